@@ -1,0 +1,37 @@
+// The snee command line: parses arguments, dispatches to one subcommand and turns every error
+// into a message and an exit code (1 = failure, 2 = bad scene, CLI11's codes for bad usage).
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "apps/render_command.h"
+#include "apps/scenes_command.h"
+#include "scene/scene_loader.h"
+
+int main(int argc, char** argv) {
+  CLI::App app("snee: a CPU renderer for translucent objects", "snee");
+  app.set_version_flag("--version", "snee " SNEE_VERSION);
+  app.require_subcommand(1);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "error: " + std::string(e.what()) + "\nrun 'snee --help' or 'snee COMMAND --help'\n";
+  });
+  const snee::RenderCommand render(app);
+  const snee::ScenesCommand scenes(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return render.selected() ? render.run() : scenes.run();
+  } catch (const snee::SceneError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,149 @@
+#include "apps/render_command.h"
+
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "apps/progress_bar.h"
+#include "apps/resolution.h"
+#include "apps/stats_json.h"
+#include "scene/scene_loader.h"
+
+namespace snee {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string output_name(const Scene& scene, const std::string& spec) {
+  if (!scene.name.empty() && scene.name.find_first_of("/\\") == std::string::npos)
+    return scene.name;
+  const std::string builtin = "builtin:";
+  if (spec.starts_with(builtin)) return spec.substr(builtin.size());
+  return fs::path(spec).stem().string();
+}
+
+// CLI11's own range checks print the bounds as doubles with hundreds of digits.
+template <typename Int>
+CLI::Validator integer_at_least(Int min) {
+  const std::string expected = "an integer from " + std::to_string(min) + " to " +
+                               std::to_string(std::numeric_limits<Int>::max());
+  return CLI::Validator(
+      [min, expected](const std::string& text) {
+        Int value{};
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        return ec == std::errc() && end == text.data() + text.size() && value >= min
+                   ? std::string()
+                   : "expected " + expected + ", got '" + text + "'";
+      },
+      min > 0 ? "POSITIVE" : "NONNEGATIVE");
+}
+
+void create_parent_directory(const fs::path& file) {
+  if (file.has_parent_path()) fs::create_directories(file.parent_path());
+}
+
+}  // namespace
+
+RenderCommand::RenderCommand(CLI::App& parent)
+    : command_(parent.add_subcommand("render", "Render a scene to an EXR and a PNG preview")) {
+  CLI::App& c = *command_;
+  c.add_option("SCENE", scene_,
+               "JSON scene file, or builtin:NAME for a built-in scene (see `snee scenes`)")
+      ->capture_default_str();
+  c.add_option("--spp", options_.spp, "Samples per pixel [default: the scene's, else 64]")
+      ->check(integer_at_least(1));
+  c.add_option("--threads", options_.threads, "Worker threads, 0 = all hardware threads")
+      ->check(integer_at_least(0))
+      ->capture_default_str();
+  c.add_option("--seed", options_.seed, "Random seed [default: the scene's, else 0]")
+      ->check(integer_at_least(uint32_t{0}));
+  c.add_option("--integrator", options_.integrator,
+               "pt (path tracing), snee or sla [default: the scene's, else pt]")
+      ->check(CLI::IsMember({"pt", "snee", "sla"}));
+  c.add_option("-o,--output", output_, "Output EXR; the PNG preview goes beside it")
+      ->default_str("out/<scene-name>.exr")
+      ->check([](const std::string& path) {
+        return fs::path(path).extension() == ".exr" ? std::string()
+                                                    : "the output must end in .exr: " + path;
+      });
+  c.add_option("--stats", stats_, "Also write render statistics as JSON to this file");
+  c.add_option("--resolution", resolution_,
+               "Image size WxH, overriding the camera's (keeps its vertical field of view)")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            return parse_resolution(text) ? std::string()
+                                          : "expected WxH with positive sizes, got '" + text + "'";
+          },
+          "WxH"));
+  c.add_option("--max-depth", options_.max_depth,
+               "Maximum scattering events per path [default: the scene's, else 1024]")
+      ->check(integer_at_least(0));
+  c.add_option("--queue-capacity", options_.queue_capacity,
+               "Path slots per work unit (batch size of every stage)")
+      ->check(integer_at_least(1))
+      ->capture_default_str();
+  c.add_option("--tile-size", options_.tile_size, "Work-unit tile edge in pixels")
+      ->check(integer_at_least(1))
+      ->capture_default_str();
+  c.add_option("--samples-per-pass", options_.samples_per_pass,
+               "Samples each work unit takes per pixel in one pass")
+      ->check(integer_at_least(1))
+      ->capture_default_str();
+  c.add_flag("-q,--quiet", quiet_, "No progress output while rendering");
+}
+
+int RenderCommand::run() const {
+  LoadedScene loaded = load_scene(scene_);
+  for (const std::string& warning : loaded.warnings)
+    std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  Scene& scene = loaded.scene;
+
+  RenderOptions options = options_;
+  if (!given("--spp")) options.spp = scene.render.spp;
+  if (!given("--max-depth")) options.max_depth = scene.render.max_depth;
+  if (!given("--seed")) options.seed = scene.render.seed;
+  if (!given("--integrator")) options.integrator = scene.render.integrator;
+  if (const auto size = parse_resolution(resolution_)) {
+    // fov_y_degrees is vertical, so a new aspect ratio widens or narrows the view sideways.
+    scene.camera.width = size->width;
+    scene.camera.height = size->height;
+  }
+
+  const std::string name = output_name(scene, scene_);
+  const fs::path exr = output_.empty() ? fs::path("out") / (name + ".exr") : fs::path(output_);
+  const fs::path png = fs::path(exr).replace_extension(".png");
+  create_parent_directory(exr);
+  if (!stats_.empty()) create_parent_directory(stats_);
+
+  ProgressBar bar(stderr);
+  ProgressCallback progress;
+  if (!quiet_) progress = [&bar](const Progress& p) { bar.update(p); };
+  RenderResult result;
+  try {
+    result = render(scene, options, progress);
+  } catch (const std::invalid_argument& e) {
+    bar.finish();
+    throw std::invalid_argument("cannot render '" + name + "' with integrator '" +
+                                options.integrator + "': " + e.what());
+  }
+  bar.finish();
+
+  result.film.meta = {options.spp, options.integrator, options.seed, result.stats.seconds, name};
+  write_exr(result.film, exr.string());
+  write_preview(result.film, png.string());
+  if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
+
+  std::printf("rendered %s: %s, %dx%d, %d spp, %.2f s, %.1f Mrays/s\n", name.c_str(),
+              options.integrator.c_str(), result.film.width, result.film.height, options.spp,
+              result.stats.seconds, result.stats.mrays_per_second());
+  std::printf("wrote %s\nwrote %s\n", exr.c_str(), png.c_str());
+  if (!stats_.empty()) std::printf("wrote %s\n", stats_.c_str());
+  return 0;
+}
+
+}  // namespace snee

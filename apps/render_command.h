@@ -1,0 +1,33 @@
+// `snee render`: loads a scene, renders it with the scene's settings overridden by the command
+// line, and writes the EXR, a PNG preview beside it and optionally a statistics JSON.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "scheduler/render.h"
+
+namespace snee {
+
+class RenderCommand {
+ public:
+  // Registers the subcommand and its options on `parent`.
+  explicit RenderCommand(CLI::App& parent);
+  bool selected() const { return command_->parsed(); }
+  // Returns the exit code; throws SceneError and other std::exceptions for main to report.
+  int run() const;
+
+ private:
+  bool given(const std::string& option) const { return command_->count(option) > 0; }
+
+  CLI::App* command_;
+  std::string scene_ = "builtin:default";
+  RenderOptions options_;
+  std::string output_;
+  std::string stats_;
+  std::string resolution_;
+  bool quiet_ = false;
+};
+
+}  // namespace snee

@@ -1,0 +1,28 @@
+#include "apps/resolution.h"
+
+#include <charconv>
+
+namespace snee {
+namespace {
+
+// Larger images would overflow the int pixel indices used by Film.
+constexpr int kMaxEdge = 1 << 15;
+
+bool parse_edge(const char* begin, const char* end, int& value) {
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  return ec == std::errc() && ptr == end && value > 0 && value <= kMaxEdge;
+}
+
+}  // namespace
+
+std::optional<Resolution> parse_resolution(const std::string& text) {
+  const size_t x = text.find('x');
+  if (x == std::string::npos) return std::nullopt;
+  Resolution r;
+  const char* s = text.data();
+  if (!parse_edge(s, s + x, r.width) || !parse_edge(s + x + 1, s + text.size(), r.height))
+    return std::nullopt;
+  return r;
+}
+
+}  // namespace snee

@@ -1,0 +1,52 @@
+#include "apps/stats_json.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+
+namespace snee {
+
+nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
+                                  const RenderResult& result) {
+  const RenderStats& stats = result.stats;
+  nlohmann::ordered_json rays = nlohmann::ordered_json::object();
+  for (int k = 0; k < static_cast<int>(RayKind::kCount); ++k)
+    rays[ray_kind_name(static_cast<RayKind>(k))] = stats.rays[k];
+  rays["total"] = stats.total_rays();
+  nlohmann::ordered_json stages = nlohmann::ordered_json::object();
+  for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
+    stages[stage_name(static_cast<Stage>(s))] = stats.stage_seconds[s];
+
+  return {
+      {"version", SNEE_VERSION},
+      {"scene", scene},
+      {"integrator", options.integrator},
+      {"spp", options.spp},
+      {"seed", options.seed},
+      {"threads", stats.threads},
+      {"resolution", {{"width", result.film.width}, {"height", result.film.height}}},
+      {"max_depth", options.max_depth},
+      {"queue_capacity", options.queue_capacity},
+      {"tile_size", options.tile_size},
+      {"samples_per_pass", options.samples_per_pass},
+      {"seconds", stats.seconds},
+      {"stage_seconds", stages},
+      {"rays", rays},
+      {"paths", stats.paths},
+      {"mrays_per_second", stats.mrays_per_second()},
+      {"path_state_bytes_per_slot", stats.path_state_bytes_per_slot},
+  };
+}
+
+void write_json_file(const nlohmann::ordered_json& json, const std::string& path) {
+  errno = 0;
+  std::ofstream out(path);
+  out << json.dump(2) << '\n';
+  out.close();
+  if (!out)
+    throw std::runtime_error("cannot write '" + path + "'" +
+                             (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
+}
+
+}  // namespace snee

@@ -1,0 +1,18 @@
+// The machine-readable record of one render (`snee render --stats FILE`), read by benchmark
+// scripts and tests; docs in README.md ("Statistics").
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "scheduler/render.h"
+
+namespace snee {
+
+nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
+                                  const RenderResult& result);
+// Throws std::runtime_error naming the file if it cannot be written.
+void write_json_file(const nlohmann::ordered_json& json, const std::string& path);
+
+}  // namespace snee

@@ -1,0 +1,21 @@
+# Every dependency is a Debian bookworm package (scripts/setup.sh installs them); nothing is
+# vendored or downloaded. Two traps (see docs/dependencies.md): xsimd's config needs xtl found
+# first, and OpenImageIO's CMake config wants OpenCV headers, so it is found through pkg-config.
+find_package(PkgConfig REQUIRED)
+find_package(embree 3 REQUIRED)
+find_package(TBB REQUIRED)
+find_package(xtl REQUIRED)
+find_package(xsimd REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(tinyobjloader REQUIRED)
+pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+find_path(RANDOM123_INCLUDE_DIR Random123/philox.h REQUIRED)
+add_library(random123 INTERFACE)
+target_include_directories(random123 SYSTEM INTERFACE ${RANDOM123_INCLUDE_DIR})
+if(SNEE_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(SNEE_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()

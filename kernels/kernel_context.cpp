@@ -1,0 +1,59 @@
+#include "kernels/kernel_context.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace snee {
+
+const char* integrator_name(Integrator i) {
+  switch (i) {
+    case Integrator::kPathTracer: return "pt";
+    case Integrator::kSnee: return "snee";
+    case Integrator::kStraightLine: return "sla";
+  }
+  return "?";
+}
+
+Integrator parse_integrator(const std::string& name) {
+  if (name == "pt") return Integrator::kPathTracer;
+  if (name == "snee") return Integrator::kSnee;
+  if (name == "sla") return Integrator::kStraightLine;
+  throw std::invalid_argument("unknown integrator '" + name + "' (expected pt, snee or sla)");
+}
+
+void KernelCounters::add(const KernelCounters& o) {
+  for (size_t i = 0; i < rays.size(); ++i) rays[i] += o.rays[i];
+  for (size_t i = 0; i < snee.size(); ++i) snee[i] += o.snee[i];
+  paths += o.paths;
+  nonfinite_samples += o.nonfinite_samples;
+}
+
+KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l, Integrator integ,
+                             uint32_t seed_, int max_depth_, const SneeOptions& snee_)
+    : scene(&s), embree(&e), lights(&l), integrator(integ), seed(seed_), max_depth(max_depth_), snee(snee_),
+      epsilon(e.ray_epsilon()), width(s.camera.width), height(s.camera.height) {
+  media.reserve(s.media.size());
+  for (const Medium& m : s.media) media.push_back({m.sigma_s, m.sigma_t(), m.g, true});
+  surfaces.reserve(s.shapes.size());
+  for (const Shape& shape : s.shapes) {
+    const Material& mat = s.materials.at(static_cast<size_t>(shape.material));
+    SurfaceInfo info{mat.kind, {mat.ior, mat.roughness}, mat.albedo, shape.interior_medium, !is_black(shape.emission)};
+    surfaces.push_back(info);
+    if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
+    if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {
+      media[static_cast<size_t>(shape.interior_medium)].straight_nee = false;
+    }
+  }
+  const Camera& c = s.camera;
+  const Vec3 forward = normalize(c.look_at - c.position);
+  const Vec3 right = normalize(cross(forward, c.up));
+  const Vec3 up = cross(right, forward);
+  const float tan_half = std::tan(0.5f * c.fov_y_degrees * kPi / 180.0f);
+  const float aspect = static_cast<float>(c.width) / static_cast<float>(c.height);
+  camera_origin = c.position;
+  camera_forward = forward;
+  camera_right = right * (tan_half * aspect);
+  camera_up = up * tan_half;
+}
+
+}  // namespace snee

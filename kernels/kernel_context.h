@@ -1,0 +1,72 @@
+// Everything the stage kernels read but never write: the scene's Embree handle and light
+// table, per-shape and per-medium parameters flattened for fast lookup, the camera basis and
+// the integrator settings. Built once per render and shared by all work units.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "kernels/bsdf/dielectric.h"
+#include "kernels/lights/light_table.h"
+#include "kernels/snee/snee_options.h"
+#include "scene/embree_scene.h"
+#include "scene/scene.h"
+
+namespace snee {
+
+enum class Integrator : uint8_t {
+  kPathTracer,    // "pt": volumetric path tracing, NEE only where no refraction is in the way
+  kSnee,          // "snee": pt plus subdivision next-event estimation at medium vertices
+  kStraightLine,  // "sla": shadow rays pass dielectric boundaries with Fresnel transmittance (biased)
+};
+const char* integrator_name(Integrator i);
+// Throws std::invalid_argument listing the valid names.
+Integrator parse_integrator(const std::string& name);
+
+struct SurfaceInfo {
+  MaterialKind kind;
+  DielectricParams dielectric;
+  Rgb albedo;
+  int32_t interior_medium;  // medium entered when crossing against the outward normal
+  bool emissive;
+};
+
+struct MediumInfo {
+  Rgb sigma_s, sigma_t;
+  float g;
+  // True when every boundary of this medium is an index-matched (null) interface, so a
+  // straight shadow ray from inside can reach a light: only then is medium NEE worth a ray.
+  bool straight_nee;
+};
+
+// Counters kept per thread and summed at the end; indices follow RayKind / SneeCounter.
+struct KernelCounters {
+  std::array<uint64_t, 4> rays{};  // camera, extension, shadow, probe
+  uint64_t paths = 0;
+  uint64_t nonfinite_samples = 0;
+  std::array<uint64_t, 8> snee{};
+  void add(const KernelCounters& o);
+};
+
+struct KernelContext {
+  KernelContext(const Scene& scene, const EmbreeScene& embree, const LightTable& lights,
+                Integrator integrator, uint32_t seed, int max_depth, const SneeOptions& snee);
+
+  const Scene* scene;
+  const EmbreeScene* embree;
+  const LightTable* lights;
+  std::vector<SurfaceInfo> surfaces;  // by shape index (= Embree geometry ID)
+  std::vector<MediumInfo> media;
+  Integrator integrator;
+  uint32_t seed;
+  int max_depth;
+  SneeOptions snee;
+  bool has_null_surfaces = false;
+  float epsilon;
+  // Pinhole camera basis: direction = forward + (2x-1) right + (1-2y) up for x,y in [0,1).
+  Vec3 camera_origin, camera_forward, camera_right, camera_up;
+  int width, height;
+};
+
+}  // namespace snee

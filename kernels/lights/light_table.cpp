@@ -1,0 +1,313 @@
+#include "kernels/lights/light_table.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace snee {
+
+namespace {
+
+// Pixels with non-zero radiance get at least this fraction of the map's mean luminance as
+// sampling weight, so dim but lit directions keep a pdf that float cdfs can still resolve.
+constexpr float kEnvWeightFloor = 1e-3f;
+
+bool is_escaping(LightKind kind) {
+  return kind == LightKind::kCone || kind == LightKind::kConstantEnv || kind == LightKind::kEnvMap;
+}
+
+// The lat-long convention of EnvImage (scene.h), in map space.
+Vec2 map_direction_to_uv(Vec3 m) {
+  return {std::atan2(m.x, -m.z) / (2.0f * kPi) + 0.5f, safe_acos(m.y) * kInvPi};
+}
+
+Vec3 uv_to_map_direction(Vec2 uv) {
+  const float theta = uv.y * kPi, phi = 2.0f * kPi * (uv.x - 0.5f);
+  const float sin_theta = std::sin(theta);
+  return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
+}
+
+// Nearest pixel: within a pixel both the radiance and the (u,v) pdf are constant.
+const Rgb& env_pixel(const EnvImage& image, Vec2 uv) {
+  const int x =
+      std::clamp(static_cast<int>(uv.x * static_cast<float>(image.width)), 0, image.width - 1);
+  const int y =
+      std::clamp(static_cast<int>(uv.y * static_cast<float>(image.height)), 0, image.height - 1);
+  return image.pixels[static_cast<size_t>(y) * image.width + x];
+}
+
+// env_rotation is a rotation (the loader rejects anything else), so its inverse is the transpose.
+Transform inverse_rotation(const Transform& r) {
+  Transform t;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) t.m[i][j] = r.m[j][i];
+  }
+  return t;
+}
+
+Distribution2D env_distribution(const EnvImage& image) {
+  const size_t count = static_cast<size_t>(image.width) * image.height;
+  std::vector<float> lum(count);
+  double sum = 0;
+  for (size_t i = 0; i < count; ++i) {
+    lum[i] = luminance(vmax(image.pixels[i], Rgb(0.0f)));
+    sum += lum[i];
+  }
+  const float floor = kEnvWeightFloor * static_cast<float>(sum / static_cast<double>(count));
+  std::vector<float> weights(count);
+  for (int y = 0; y < image.height; ++y) {
+    // sin(theta) turns the (u,v) density into one proportional to radiance per solid angle.
+    const float sin_theta = std::sin((static_cast<float>(y) + 0.5f) * kPi / image.height);
+    for (int x = 0; x < image.width; ++x) {
+      const size_t i = static_cast<size_t>(y) * image.width + x;
+      weights[i] = lum[i] > 0 ? std::max(lum[i], floor) * sin_theta : 0.0f;
+    }
+  }
+  return Distribution2D(weights, image.width, image.height);
+}
+
+Vec3 triangle_vertex(const TriangleMesh& mesh, size_t triangle, int corner) {
+  return mesh.positions[mesh.indices[3 * triangle + corner]];
+}
+
+// Cosine of the half-angle of the cone from p that just contains the sphere, or 1 when p is not
+// outside it. Rounded outward so the sampled cone never misses part of the sphere; directions
+// in the sliver beyond the silhouette miss and are rejected.
+float visible_cone_cos(const Shape& sphere, Vec3 p) {
+  const Vec3 to_center = sphere.center - p;
+  const double d2 = dot(to_center, to_center);
+  const double r2 = static_cast<double>(sphere.radius) * sphere.radius;
+  if (d2 <= r2) return 1.0f;
+  const float cos_max = static_cast<float>(std::sqrt(1.0 - r2 / d2));
+  return std::nextafter(cos_max, -1.0f);
+}
+
+}  // namespace
+
+LightTable::LightTable(const Scene& scene)
+    : scene_(&scene),
+      lights_(scene.lights),
+      cone_cos_(lights_.size(), 1.0f),
+      area_of_light_(lights_.size(), -1),
+      light_of_shape_(scene.shapes.size(), -1),
+      env_of_light_(lights_.size(), -1) {
+  if (lights_.empty()) return;
+  selection_pmf_ = 1.0f / static_cast<float>(lights_.size());
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    const Light& light = lights_[i];
+    if (is_escaping(light.kind)) escaping_.push_back(static_cast<int>(i));
+    switch (light.kind) {
+      case LightKind::kDirectional:
+      case LightKind::kPoint:
+        has_delta_ = true;
+        break;
+      case LightKind::kCone:
+        cone_cos_[i] = std::cos(light.half_angle);
+        break;
+      case LightKind::kConstantEnv:
+        break;
+      case LightKind::kEnvMap: {
+        EnvMap env;
+        env.image = &scene.env_images[light.env_image];
+        env.distribution = env_distribution(*env.image);
+        env.to_world = light.env_rotation;
+        env.to_map = inverse_rotation(light.env_rotation);
+        env_of_light_[i] = static_cast<int>(envs_.size());
+        envs_.push_back(std::move(env));
+        break;
+      }
+      case LightKind::kArea: {
+        const Shape& shape = scene.shapes[light.shape];
+        AreaLight area;
+        area.shape = light.shape;
+        if (shape.kind == ShapeKind::kSphere) {
+          area.total_area = 4.0f * kPi * shape.radius * shape.radius;
+        } else {
+          std::vector<float> areas(shape.mesh.triangle_count());
+          for (size_t t = 0; t < areas.size(); ++t) {
+            const Vec3 p0 = triangle_vertex(shape.mesh, t, 0);
+            const Vec3 e1 = triangle_vertex(shape.mesh, t, 1) - p0;
+            const Vec3 e2 = triangle_vertex(shape.mesh, t, 2) - p0;
+            areas[t] = 0.5f * length(cross(e1, e2));
+            area.total_area += areas[t];
+          }
+          area.triangles = Distribution1D(areas);
+        }
+        area_of_light_[i] = static_cast<int>(areas_.size());
+        light_of_shape_[light.shape] = static_cast<int>(i);
+        areas_.push_back(std::move(area));
+        break;
+      }
+    }
+  }
+}
+
+LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
+  LightSample s;
+  if (lights_.empty()) return s;
+  const float scaled = u_select * static_cast<float>(lights_.size());
+  const int index = std::min(static_cast<int>(scaled), static_cast<int>(lights_.size()) - 1);
+  const Light& light = lights_[index];
+  switch (light.kind) {
+    case LightKind::kDirectional:
+      s.wi = light.direction;
+      s.radiance = light.irradiance;
+      s.pdf = selection_pmf_;
+      s.delta = true;
+      break;
+    case LightKind::kPoint: {
+      const Vec3 to_light = light.position - p;
+      s.distance = length(to_light);
+      if (!(s.distance > 0)) return s;
+      s.wi = to_light / s.distance;
+      s.radiance = light.intensity / (s.distance * s.distance);
+      s.pdf = selection_pmf_;
+      s.delta = true;
+      break;
+    }
+    case LightKind::kCone:
+    case LightKind::kConstantEnv:
+    case LightKind::kEnvMap:
+      s.wi = sample_escaping(index, u);
+      s.radiance = escaped_radiance(s.wi);
+      s.pdf = escaped_pdf(s.wi);
+      break;
+    case LightKind::kArea:
+      // The fraction of u_select left over after choosing the light picks the triangle.
+      s = sample_area(index, p, scaled - static_cast<float>(index), u);
+      break;
+  }
+  s.valid = s.pdf > 0 && std::isfinite(s.pdf) && !is_black(s.radiance);
+  return s;
+}
+
+Vec3 LightTable::sample_escaping(int light, Vec2 u) const {
+  const Light& l = lights_[light];
+  switch (l.kind) {
+    case LightKind::kCone:
+      return Frame::from_normal(l.direction).to_world(sample_uniform_cone(u, cone_cos_[light]));
+    case LightKind::kEnvMap: {
+      const EnvMap& env = envs_[env_of_light_[light]];
+      float pdf_uv = 0;
+      const Vec2 uv = env.distribution.sample(u, &pdf_uv);
+      return normalize(env.to_world.vector(uv_to_map_direction(uv)));
+    }
+    default:
+      return sample_uniform_sphere(u);
+  }
+}
+
+LightSample LightTable::sample_area(int light, Vec3 p, float u_triangle, Vec2 u) const {
+  LightSample s;
+  const AreaLight& area = areas_[area_of_light_[light]];
+  const Shape& shape = scene_->shapes[area.shape];
+  Vec3 q, n;
+  if (shape.kind == ShapeKind::kSphere) {
+    // Uniform over the cone of directions that see the sphere; from inside, only the back side
+    // is visible, which emits nothing.
+    const float cos_max = visible_cone_cos(shape, p);
+    if (cos_max >= 1.0f) return s;
+    const Vec3 to_center = shape.center - p;
+    const float dc = length(to_center);
+    const Vec3 local = sample_uniform_cone(u, cos_max);
+    s.wi = Frame::from_normal(to_center / dc).to_world(local);
+    const float sin2 = std::max(0.0f, 1.0f - local.z * local.z);
+    const float disc = shape.radius * shape.radius - dc * dc * sin2;
+    if (disc < 0) return s;
+    s.distance = dc * local.z - std::sqrt(disc);
+    q = p + s.wi * s.distance;
+    n = normalize(q - shape.center);
+    s.pdf = selection_pmf_ * uniform_cone_pdf(cos_max);
+  } else {
+    if (!(area.total_area > 0)) return s;
+    const int triangle = area.triangles.sample_discrete(u_triangle, nullptr);
+    const Vec3 p0 = triangle_vertex(shape.mesh, triangle, 0);
+    const Vec3 p1 = triangle_vertex(shape.mesh, triangle, 1);
+    const Vec3 p2 = triangle_vertex(shape.mesh, triangle, 2);
+    const float su = std::sqrt(u.x);
+    const float b0 = 1.0f - su, b1 = u.y * su;
+    q = p0 * b0 + p1 * b1 + p2 * (1.0f - b0 - b1);
+    n = normalize(cross(p1 - p0, p2 - p0));
+    const Vec3 to_light = q - p;
+    s.distance = length(to_light);
+    if (!(s.distance > 0)) return s;
+    s.wi = to_light / s.distance;
+  }
+  const float cos_light = -dot(n, s.wi);
+  if (!(cos_light > 0)) return LightSample{};
+  if (shape.kind == ShapeKind::kMesh) {
+    s.pdf = selection_pmf_ * s.distance * s.distance / (area.total_area * cos_light);
+  }
+  s.radiance = shape.emission;
+  return s;
+}
+
+Rgb LightTable::escaped_radiance(Vec3 d) const {
+  Rgb sum(0.0f);
+  for (const int light : escaping_) sum += escaped_radiance_of(light, d);
+  return sum;
+}
+
+float LightTable::escaped_pdf(Vec3 d) const {
+  float sum = 0;
+  for (const int light : escaping_) sum += escaped_pdf_of(light, d);
+  return sum * selection_pmf_;
+}
+
+Rgb LightTable::escaped_radiance_of(int light, Vec3 d) const {
+  const Light& l = lights_[light];
+  switch (l.kind) {
+    case LightKind::kCone:
+      return dot(d, l.direction) >= cone_cos_[light] ? l.radiance : Rgb(0.0f);
+    case LightKind::kEnvMap: {
+      const EnvMap& env = envs_[env_of_light_[light]];
+      return l.radiance * env_pixel(*env.image, map_direction_to_uv(env.to_map.vector(d)));
+    }
+    default:
+      return l.radiance;
+  }
+}
+
+float LightTable::escaped_pdf_of(int light, Vec3 d) const {
+  const Light& l = lights_[light];
+  switch (l.kind) {
+    case LightKind::kCone:
+      return dot(d, l.direction) >= cone_cos_[light] ? uniform_cone_pdf(cone_cos_[light]) : 0.0f;
+    case LightKind::kEnvMap: {
+      const EnvMap& env = envs_[env_of_light_[light]];
+      const Vec3 m = env.to_map.vector(d);
+      const float sin_theta = safe_sqrt(1.0f - m.y * m.y);
+      if (sin_theta == 0) return 0.0f;
+      // (u,v) -> direction stretches by 2 pi in phi and pi in theta, times sin(theta).
+      return env.distribution.pdf(map_direction_to_uv(m)) / (2.0f * kPi * kPi * sin_theta);
+    }
+    default:
+      return uniform_sphere_pdf();
+  }
+}
+
+Rgb LightTable::area_radiance(int shape, Vec3 n, Vec3 wi) const {
+  // wi travels toward the surface; only a front (outward) side facing the viewer emits.
+  return dot(n, wi) < 0 ? scene_->shapes[shape].emission : Rgb(0.0f);
+}
+
+float LightTable::area_pdf(int shape, Vec3 p, Vec3 hit, Vec3 n) const {
+  const int light = light_of_shape_[shape];
+  if (light < 0) return 0.0f;
+  return selection_pmf_ * area_pdf_of(areas_[area_of_light_[light]], p, hit, n);
+}
+
+float LightTable::area_pdf_of(const AreaLight& area, Vec3 p, Vec3 hit, Vec3 n) const {
+  const Shape& shape = scene_->shapes[area.shape];
+  if (shape.kind == ShapeKind::kSphere) {
+    const float cos_max = visible_cone_cos(shape, p);
+    return cos_max < 1.0f ? uniform_cone_pdf(cos_max) : 0.0f;
+  }
+  if (!(area.total_area > 0)) return 0.0f;
+  const Vec3 to_hit = hit - p;
+  const float d2 = dot(to_hit, to_hit);
+  const float cos_light = std::fabs(dot(n, to_hit)) / std::sqrt(d2);
+  if (!(cos_light > 0)) return 0.0f;
+  return d2 / (area.total_area * cos_light);
+}
+
+}  // namespace snee

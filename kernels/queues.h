@@ -1,0 +1,126 @@
+// Fixed-capacity work queues of one work unit. A queue is filled by one stage and drained by
+// the next; filling is in slot order (a stable compaction), so no atomics are needed and the
+// order never depends on timing.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "scene/embree_scene.h"
+
+namespace snee {
+
+template <typename T>
+class AlignedArray {
+ public:
+  AlignedArray() = default;
+  explicit AlignedArray(size_t n)
+      : data_(static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64}))), size_(n) {}
+  T* data() const { return data_.get(); }
+  T& operator[](size_t i) { return data_.get()[i]; }
+  const T& operator[](size_t i) const { return data_.get()[i]; }
+  size_t size() const { return size_; }
+
+ private:
+  struct Delete {
+    void operator()(T* p) const { ::operator delete(p, std::align_val_t{64}); }
+  };
+  std::unique_ptr<T, Delete> data_;
+  size_t size_ = 0;
+};
+
+// A list of path slots waiting for one stage.
+class SlotQueue {
+ public:
+  explicit SlotQueue(size_t capacity) : slots_(capacity) {}
+  void clear() { size_ = 0; }
+  void push(uint32_t slot) { slots_[size_++] = slot; }
+  uint32_t operator[](size_t i) const { return slots_[i]; }
+  size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const uint32_t* begin() const { return slots_.data(); }
+  const uint32_t* end() const { return slots_.data() + size_; }
+
+ private:
+  AlignedArray<uint32_t> slots_;
+  size_t size_ = 0;
+};
+
+// Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.
+class RayBatch {
+ public:
+  explicit RayBatch(size_t capacity);
+  void clear() { size_ = 0; }
+  size_t size() const { return size_; }
+  size_t capacity() const { return capacity_; }
+  // Appends a ray; returns its index.
+  uint32_t push(Vec3 origin, Vec3 direction, float tnear, float tfar);
+  Vec3 origin(size_t i) const { return {org_x_[i], org_y_[i], org_z_[i]}; }
+  Vec3 direction(size_t i) const { return {dir_x_[i], dir_y_[i], dir_z_[i]}; }
+  float tfar(size_t i) const { return tfar_[i]; }
+  uint32_t geom(size_t i) const { return geom_id_[i]; }
+  uint32_t prim(size_t i) const { return prim_id_[i]; }
+  bool occluded(size_t i) const { return tfar_[i] < 0; }
+  RayArrays rays();
+  HitArrays hits();
+
+ private:
+  size_t capacity_, size_ = 0;
+  AlignedArray<float> org_x_, org_y_, org_z_, tnear_, dir_x_, dir_y_, dir_z_, time_, tfar_;
+  AlignedArray<uint32_t> mask_, id_, flags_;
+  AlignedArray<float> ng_x_, ng_y_, ng_z_, u_, v_;
+  AlignedArray<uint32_t> prim_id_, geom_id_, inst_id_;
+};
+
+// Medium code of a shadow segment that only needs a visibility answer (no transmittance, no
+// passing through index-matched boundaries): traced as a plain occlusion query.
+inline constexpr int32_t kVisibilityOnly = -2;
+
+// A pending light connection: radiance that reaches the path's pixel if every one of its
+// segments is unoccluded. A SNEE or exit-event connection may also carry a `selector`
+// segment whose visibility does not gate the contribution but picks between two MIS-weighted
+// values (docs/snee.md 3.6: the weight needs V_first(x_i, x_k)).
+struct ShadowConnection {
+  uint32_t slot;
+  uint32_t first_segment;
+  uint32_t segment_count;  // gating segments, stored consecutively from first_segment
+  int32_t selector_segment;  // -1 if none
+  Rgb if_clear;              // contribution when the selector is clear (or absent)
+  Rgb if_selector_blocked;
+};
+
+class ShadowQueue {
+ public:
+  explicit ShadowQueue(size_t segment_capacity);
+  void clear();
+  bool empty() const { return connections_.empty(); }
+  size_t segment_count() const { return segments_.size(); }
+  size_t segment_capacity() const { return segments_.capacity(); }
+  // Adds a segment from origin along unit direction up to tmax, starting in `medium` (-1 =
+  // vacuum, tracked through index-matched boundaries; kVisibilityOnly = plain occlusion).
+  uint32_t add_segment(Vec3 origin, Vec3 direction, float tmax, int32_t medium);
+  void add_connection(const ShadowConnection& c) { connections_.push_back(c); }
+
+  std::vector<ShadowConnection>& connections() { return connections_; }
+  RayBatch& segments() { return segments_; }
+  std::vector<int32_t>& segment_media() { return media_; }
+  std::vector<Rgb>& segment_transmittance() { return transmittance_; }
+  // Scratch space for tracing segments boundary by boundary (kept to avoid reallocation).
+  std::vector<uint32_t>& scratch_indices() { return scratch_indices_; }
+  std::vector<Vec3>& scratch_origins() { return scratch_origins_; }
+  std::vector<float>& scratch_lengths() { return scratch_lengths_; }
+
+ private:
+  std::vector<ShadowConnection> connections_;
+  RayBatch segments_;
+  std::vector<int32_t> media_;
+  std::vector<Rgb> transmittance_;
+  std::vector<uint32_t> scratch_indices_;
+  std::vector<Vec3> scratch_origins_;
+  std::vector<float> scratch_lengths_;
+};
+
+}  // namespace snee

@@ -1,0 +1,67 @@
+// Warping of uniform random numbers to common distributions, with matching pdfs, and
+// piecewise-constant 1D/2D distributions (used for light selection and environment maps).
+// Header-only declarations; implementations live beside them in sampling.cpp or inline.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "scene/math.h"
+
+namespace snee {
+
+struct Vec2 {
+  float x = 0, y = 0;
+};
+
+Vec3 sample_uniform_sphere(Vec2 u);
+inline constexpr float uniform_sphere_pdf() {
+  return kInv4Pi;
+}
+
+// Cosine-weighted hemisphere around +z.
+Vec3 sample_cosine_hemisphere(Vec2 u);
+inline float cosine_hemisphere_pdf(float cos_theta) {
+  return cos_theta > 0 ? cos_theta * kInvPi : 0.0f;
+}
+
+// Uniform directions in the cone of half-angle acos(cos_max) around +z.
+Vec3 sample_uniform_cone(Vec2 u, float cos_max);
+float uniform_cone_pdf(float cos_max);
+
+// Piecewise-constant distribution on [0,1) with n cells; zero-weight cells are never sampled.
+// Negative and NaN weights count as zero; if every weight is zero the distribution is uniform
+// (integral() still reports 0).
+class Distribution1D {
+ public:
+  Distribution1D() = default;
+  explicit Distribution1D(std::span<const float> weights);
+  // Returns a continuous position in [0,1); *pdf is the density in that measure, *cell the cell.
+  float sample_continuous(float u, float* pdf, int* cell) const;
+  int sample_discrete(float u, float* pmf) const;
+  float pdf_continuous(float x) const;  // density at x in [0,1)
+  float pmf(int cell) const;
+  int size() const { return static_cast<int>(density_.size()); }
+  float integral() const { return integral_; }  // mean weight (sum / n)
+
+ private:
+  std::vector<float> density_;  // normalized: pdf_continuous of each cell, pmf = density / n
+  std::vector<float> cdf_;      // n + 1 entries
+  float integral_ = 0;
+};
+
+// 2D piecewise-constant distribution on [0,1)^2 (rows = v, columns = u).
+class Distribution2D {
+ public:
+  Distribution2D() = default;
+  Distribution2D(std::span<const float> weights, int width, int height);
+  Vec2 sample(Vec2 u, float* pdf) const;  // pdf with respect to du dv
+  float pdf(Vec2 uv) const;
+
+ private:
+  std::vector<Distribution1D> conditional_;  // one per row
+  Distribution1D marginal_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace snee

@@ -1,0 +1,138 @@
+#include "kernels/bsdf/dielectric.h"
+#include "kernels/bsdf/diffuse.h"
+#include "kernels/exit_event.h"
+#include "kernels/path_ops.h"
+#include "kernels/stages.h"
+
+namespace snee {
+
+namespace {
+
+// Medium on the side of the surface that direction w points into.
+int32_t medium_on_side(const SurfaceInfo& info, Vec3 w, Vec3 n) { return dot(w, n) >= 0 ? -1 : info.interior_medium; }
+
+bool needs_tracking(const KernelContext& ctx, int32_t medium) { return medium >= 0 || ctx.has_null_surfaces; }
+
+// Light sample at a non-delta surface vertex, weighted against BSDF sampling.
+void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p, Vec3 n, const Frame& frame, Vec3 wo_local,
+                 const SurfaceInfo& info, ShadowQueue& shadow, const ExitEvent* exit) {
+  const RandomBlock r = draw(ctx, state, s, RngPurpose::kLightSample);
+  const LightSample ls = ctx.lights->sample(p, r.u[0], {r.u[1], r.u[2]});
+  if (!ls.valid || ls.pdf <= 0) return;
+  const Vec3 wi_local = frame.to_local(ls.wi);
+  float f = 0, bsdf_pdf = 0;
+  Rgb reflectance(1.0f);
+  if (info.kind == MaterialKind::kDiffuse) {
+    f = diffuse_eval(wo_local, wi_local);
+    bsdf_pdf = diffuse_pdf(wo_local, wi_local);
+    reflectance = info.albedo;
+  } else {
+    f = dielectric_eval(info.dielectric, wo_local, wi_local);
+    bsdf_pdf = dielectric_pdf(info.dielectric, wo_local, wi_local);
+  }
+  if (f <= 0) return;
+  const Rgb unweighted = state.throughput(s) * reflectance * ls.radiance * (f * std::fabs(wi_local.z) / ls.pdf);
+  const Vec3 origin = offset_origin(p, n, ls.wi, ctx.epsilon);
+  const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
+  const int32_t medium = needs_tracking(ctx, medium_on_side(info, ls.wi, n)) ? medium_on_side(info, ls.wi, n) : kVisibilityOnly;
+  const uint32_t seg = shadow.add_segment(origin, ls.wi, tmax, medium);
+  if (exit && exit->snee_possible && wi_local.z > 0 && std::isinf(ls.distance)) {
+    // A light-sampled exit toward a distant light after two medium vertices: SNEE could have
+    // made this path too.
+    const ExitWeights w = exit_light_sample_weights(ctx, *exit, ls.wi, ls.pdf, ls.delta);
+    const uint32_t selector = shadow.add_segment(exit->x_i, exit->first_hit_direction, exit->first_hit_tmax, kVisibilityOnly);
+    shadow.add_connection({s, seg, 1, static_cast<int32_t>(selector), unweighted * w.if_first_hit,
+                           unweighted * w.if_not_first_hit});
+    return;
+  }
+  const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf_pdf);
+  shadow.add_connection({s, seg, 1, -1, unweighted * weight, Rgb(0.0f)});
+}
+
+}  // namespace
+
+void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters) {
+  (void)counters;
+  for (const uint32_t s : q.surface) {
+    const Vec3 d = state.direction(s);
+    const Vec3 p = state.origin(s) + d * state.hit_t[s];
+    const uint32_t geom = state.hit_geom[s];
+    const Vec3 n = ctx.embree->normal(geom, state.hit_prim[s], p);
+    const SurfaceInfo& info = ctx.surfaces[geom];
+    const bool light_skipped = (state.flags[s] & kPathLightSkipped) != 0;
+    state.flags[s] &= ~(kPathEscapeDeferred | kPathLightSkipped);
+
+    if (info.emissive && dot(d, n) < 0 && !light_skipped) {
+      const Rgb le = ctx.lights->area_radiance(static_cast<int>(geom), n, d);
+      const float pdf = state.mis_pdf[s];
+      const float weight = pdf > 0 ? power_heuristic(pdf, ctx.lights->area_pdf(static_cast<int>(geom), state.origin(s), p, n)) : 1.0f;
+      state.add_radiance(s, state.throughput(s) * le * weight);
+    }
+
+    if (info.kind == MaterialKind::kNull) {
+      // An index-matched boundary only changes the medium; the ray goes on unchanged.
+      state.medium[s] = medium_after_crossing(ctx, geom, d, n);
+      state.set_ray(s, offset_origin(p, n, d, ctx.epsilon), d);
+      state.event[s] += 1;
+      q.extend.push(s);
+      continue;
+    }
+
+    // The exit-event bookkeeping of SNEE needs the vertices before this one.
+    const ExitEvent exit = make_exit_event(ctx, state, s, p, n, info);
+    state.depth[s] += 1;
+    state.push_vertex(s, p, d, false);
+    if (static_cast<int>(state.depth[s]) > ctx.max_depth) {
+      q.retire.push(s);
+      continue;
+    }
+
+    const bool two_sided_flip = info.kind == MaterialKind::kDiffuse && dot(d, n) > 0;
+    const Vec3 shading_n = two_sided_flip ? -n : n;
+    const Frame frame = Frame::from_normal(shading_n);
+    const Vec3 wo_local = frame.to_local(-d);
+    const bool delta_bsdf = info.kind == MaterialKind::kDielectric && info.dielectric.delta();
+    if (!delta_bsdf && !ctx.lights->empty() && !exit.light_handled_elsewhere) {
+      surface_nee(ctx, state, s, p, n, frame, wo_local, info, q.shadow, exit.snee_possible ? &exit : nullptr);
+    }
+
+    const RandomBlock r = draw(ctx, state, s, RngPurpose::kBsdf);
+    BsdfSample bs;
+    Rgb reflectance(1.0f);
+    if (info.kind == MaterialKind::kDiffuse) {
+      bs = diffuse_sample(wo_local, {r.u[0], r.u[1]});
+      reflectance = info.albedo;
+    } else {
+      DielectricParams params = info.dielectric;
+      bs = dielectric_sample(params, wo_local, {r.u[0], r.u[1]}, r.u[2]);
+    }
+    if (!bs.valid || bs.pdf <= 0 || bs.f <= 0) {
+      q.retire.push(s);
+      continue;
+    }
+    const Vec3 wi = frame.to_world(bs.wi);
+    state.set_throughput(s, state.throughput(s) * reflectance * (bs.f * std::fabs(bs.wi.z) / bs.pdf));
+    state.mis_pdf[s] = bs.delta ? 0.0f : bs.pdf;
+    if (bs.transmission) {
+      const bool entering = dot(wi, n) < 0;
+      const float eta2 = info.dielectric.eta * info.dielectric.eta;
+      state.eta_scale[s] *= entering ? eta2 : 1.0f / eta2;
+      state.medium[s] = medium_on_side(info, wi, n);
+      if (!entering && exit.snee_possible) {
+        defer_bsdf_exit(ctx, state, s, exit, wi, q.shadow);
+      } else if (!entering && exit.light_handled_elsewhere) {
+        state.flags[s] |= kPathLightSkipped;
+      }
+    }
+    if (!survive_russian_roulette(ctx, state, s)) {
+      q.retire.push(s);
+      continue;
+    }
+    state.set_ray(s, offset_origin(p, n, wi, ctx.epsilon), wi);
+    state.event[s] += 1;
+    q.extend.push(s);
+  }
+  q.surface.clear();
+}
+
+}  // namespace snee

@@ -1,0 +1,154 @@
+#include "kernels/snee/snee_pdfs.h"
+
+#include "kernels/bsdf/fresnel.h"
+#include "kernels/medium/free_flight.h"
+#include "kernels/medium/henyey_greenstein.h"
+#include "kernels/snee/distance_samplers.h"
+#include "kernels/snee/joint_importance.h"
+#include "kernels/snee/probe.h"
+
+namespace snee {
+
+namespace {
+
+// Density of the tracer's BSDF sampler at x_k choosing omega_o given omega_kj, in the measure
+// left after the interface delta (solid angle when rough, a lobe probability when smooth).
+double exit_bsdf_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
+  if (s.light_delta || !(g.cos_o > 0) || !(g.cos_k_j > 0)) return 0.0;
+  if (s.interface.delta()) return smooth_transmission_probability(s);
+  return dielectric_pdf(s.interface, g.local_kj, g.local_o);
+}
+
+// Density of the tracer's light sampler at x_k in the same measure; a smooth interface can never
+// transmit toward a sampled light direction.
+double exit_light_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
+  if (s.interface.delta() || !(g.cos_o > 0) || !(g.cos_k_j > 0)) return 0.0;
+  return s.light_pdf;
+}
+
+double walk_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
+  if (!g.valid || !(g.cos_k_j > 0)) return 0.0;
+  const float g_phase = s.medium.g;
+  const double first = hg_phase(dot(s.omega_in, g.omega_ij), g_phase) *
+                       free_flight_pdf(s.medium.sigma_t, static_cast<float>(g.r_ij)) /
+                       (g.r_ij * g.r_ij);
+  const double second = hg_phase(dot(g.omega_ij, g.omega_jk), g_phase) *
+                        free_flight_survival(s.medium.sigma_t, static_cast<float>(g.r_jk)) *
+                        g.cos_k_j / (g.r_jk * g.r_jk);
+  return first * second;
+}
+
+double distance_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& options) {
+  const DistanceMixture m{s.medium.sigma_t, options.c_exponential, s.x_k, -g.omega_jk, s.x_i};
+  return distance_mixture_pdf(m, static_cast<float>(g.r_jk));
+}
+
+double tb_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& options) {
+  if (!snee_can_produce(s) || !g.valid || !(g.cos_o > 0) || !(g.cos_k_j > 0)) return 0.0;
+  const double probe_and_light = probe_pdf(s, options) * s.light_pdf;
+  const double t = g.r_jk;
+  switch (suffix_measure(s)) {
+    case SuffixMeasure::kFull:
+    case SuffixMeasure::kDeltaLight:
+      return probe_and_light * dielectric_transmission_pdf(s.interface, g.local_o, g.local_kj) *
+             distance_pdf(s, g, options) / (t * t);
+    case SuffixMeasure::kDeltaInterface: {
+      // The refracted direction is deterministic; its solid angle relates to omega_o's by the
+      // refraction Jacobian eta^2 cos_kj / cos_o (eta_a^2 cos_a dsigma_a = eta_b^2 cos_b dsigma_b).
+      const double eta = s.interface.eta;
+      const double jacobian = eta * eta * g.cos_k_j / g.cos_o;
+      return probe_and_light * jacobian * distance_pdf(s, g, options) / (t * t);
+    }
+    case SuffixMeasure::kDeltaBoth:
+      return probe_and_light * distance_pdf(s, g, options);
+  }
+  return 0.0;
+}
+
+double bt_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& options) {
+  if (!snee_can_produce(s) || !g.valid || s.light_delta || !(g.cos_o > 0) || !(g.cos_k_j > 0)) {
+    return 0.0;
+  }
+  const JointImportance jis{s.x_i, s.omega_in, s.x_k, s.medium.g, options.c_joint};
+  const double placement = probe_pdf(s, options) * joint_importance_pdf(jis, s.x_j);
+  if (s.interface.delta()) return placement;  // transmission forced, refraction deterministic
+  return placement * dielectric_transmission_pdf(s.interface, g.local_kj, g.local_o);
+}
+
+double heuristic(double p, MisHeuristic h) {
+  return h == MisHeuristic::kPower ? p * p : p;
+}
+
+bool is_unidirectional(Strategy st) {
+  return st == Strategy::kUnidirectionalBsdf || st == Strategy::kUnidirectionalLight;
+}
+
+}  // namespace
+
+double smooth_transmission_probability(const SneeSuffix& s) {
+  // Evaluated from the inside, as the tracer's sampler does (same value up to rounding as from
+  // the outside: Fresnel reflectance is symmetric over a refraction pair).
+  const float cos_kj = dot(s.n_k, normalize(s.x_k - s.x_j));
+  if (!(cos_kj > 0)) return 0.0;
+  return 1.0 - fresnel_dielectric(cos_kj, 1.0f / s.interface.eta);
+}
+
+double probe_pdf(const SneeSuffix& s, const SneeOptions& options) {
+  if (!s.v_first) return 0.0;
+  return probe_area_pdf(options.probe, s.omega_in, s.medium.g, s.x_i, s.x_k, s.n_k);
+}
+
+double unidirectional_walk_pdf(const SneeSuffix& s) {
+  return walk_pdf(s, suffix_geometry(s));
+}
+
+double top_to_bottom_pdf(const SneeSuffix& s, const SneeOptions& options) {
+  return tb_pdf(s, suffix_geometry(s), options);
+}
+
+double bottom_to_top_pdf(const SneeSuffix& s, const SneeOptions& options) {
+  return bt_pdf(s, suffix_geometry(s), options);
+}
+
+double unidirectional_bsdf_pdf(const SneeSuffix& s) {
+  const SuffixGeometry g = suffix_geometry(s);
+  return walk_pdf(s, g) * exit_bsdf_pdf(s, g);
+}
+
+double unidirectional_light_pdf(const SneeSuffix& s) {
+  const SuffixGeometry g = suffix_geometry(s);
+  return walk_pdf(s, g) * exit_light_pdf(s, g);
+}
+
+StrategyPdfs strategy_pdfs(const SneeSuffix& s, const SneeOptions& options) {
+  const SuffixGeometry g = suffix_geometry(s);
+  StrategyPdfs out;
+  out.handled = snee_can_produce(s);
+  const auto set = [&](Strategy st, double p) { out.pdf[static_cast<int>(st)] = p; };
+  if (!out.handled) {
+    set(Strategy::kUnidirectionalBsdf, exit_bsdf_pdf(s, g));
+    set(Strategy::kUnidirectionalLight, exit_light_pdf(s, g));
+    return out;
+  }
+  const double walk = walk_pdf(s, g);
+  set(Strategy::kTopToBottom, tb_pdf(s, g, options));
+  set(Strategy::kBottomToTop, bt_pdf(s, g, options));
+  set(Strategy::kUnidirectionalBsdf, walk * exit_bsdf_pdf(s, g));
+  set(Strategy::kUnidirectionalLight, walk * exit_light_pdf(s, g));
+  return out;
+}
+
+double mis_weight(Strategy st, const StrategyPdfs& pdfs, const SneeOptions& options) {
+  const auto competes = [&](Strategy t) {
+    return pdfs.handled ? options.enabled.contains(t) : is_unidirectional(t);
+  };
+  if (!competes(st) || !(pdfs[st] > 0)) return 0.0;
+  double sum = 0;
+  for (int i = 0; i < kStrategyCount; ++i) {
+    const Strategy t = static_cast<Strategy>(i);
+    if (competes(t)) sum += heuristic(pdfs[t], options.heuristic);
+  }
+  return heuristic(pdfs[st], options.heuristic) / sum;
+}
+
+}  // namespace snee

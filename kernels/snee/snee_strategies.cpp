@@ -1,0 +1,163 @@
+#include "kernels/snee/snee_strategies.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/snee/distance_samplers.h"
+#include "kernels/snee/joint_importance.h"
+#include "kernels/snee/snee_integrand.h"
+#include "kernels/snee/snee_pdfs.h"
+
+namespace snee {
+
+namespace {
+
+SneeSuffix make_suffix(const SneeOrigin& origin, const SneeMedium& medium, const ExitPoint& exit,
+                       Vec3 x_j, Vec3 omega_o, float light_pdf, bool light_delta) {
+  SneeSuffix s;
+  s.x_i = origin.x_i;
+  s.omega_in = origin.omega_in;
+  s.x_j = x_j;
+  s.x_k = exit.x_k;
+  s.n_k = exit.n_k;
+  s.omega_o = omega_o;
+  s.medium = medium;
+  s.interface = exit.interface;
+  s.light_pdf = light_pdf;
+  s.light_delta = light_delta;
+  // The probe found x_k as the first hit from x_i, and both subdivision strategies place a
+  // medium vertex x_j between two medium-side points.
+  s.v_first = true;
+  s.x_i_medium = true;
+  s.x_j_medium = true;
+  return s;
+}
+
+ShadowSegment segment_between(Vec3 from, Vec3 to) {
+  const Vec3 d = to - from;
+  const float length_d = length(d);
+  return {from, d / length_d, length_d};
+}
+
+// Finishes a candidate: MIS weight from the shared pdf functions, contribution from the sampling
+// pdf. Fails when nothing would be added.
+SneeCandidate finish(Strategy st, const SneeSuffix& s, Rgb emitted, double sampling_pdf,
+                     const SneeOptions& options, std::array<ShadowSegment, 3> segments) {
+  if (!(sampling_pdf > 0) || !std::isfinite(sampling_pdf)) return {};
+  const double weight = mis_weight(st, strategy_pdfs(s, options), options);
+  if (!(weight > 0)) return {};
+  const Rgb f = suffix_integrand(s, emitted);
+  const Rgb contribution = f * static_cast<float>(weight / sampling_pdf);
+  if (is_black(contribution) || !is_finite(contribution)) return {};
+  SneeCandidate c;
+  c.x_j = s.x_j;
+  c.omega_o = s.omega_o;
+  c.segments = segments;
+  c.contribution = contribution;
+  c.pdf = sampling_pdf;
+  c.weight = weight;
+  c.valid = true;
+  return c;
+}
+
+}  // namespace
+
+SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
+                                   const ExitPoint& exit, const LightTable& lights,
+                                   const SneeOptions& options, float epsilon,
+                                   std::span<const float, kTopToBottomDimensions> u) {
+  const LightSample light = lights.sample(exit.x_k, u[0], Vec2{u[1], u[2]});
+  // Only distant lights (directional, cone, environment): the tracer reaches area and point
+  // lights with its own two-way weights, which SNEE's exit weights do not see (the emission of
+  // an area light hit after the exit is weighted where the path's vertex memory has moved on).
+  if (!light.valid || !(light.pdf > 0) || is_black(light.radiance) || std::isfinite(light.distance)) {
+    return {};
+  }
+  const double cos_o = dot(exit.n_k, light.wi);
+  if (!(cos_o > 0)) return {};
+
+  // Inward direction: transmission lobe only, given the light-side direction.
+  const Frame frame = Frame::from_normal(exit.n_k);
+  const Vec3 local_o = frame.to_local(light.wi);
+  Vec3 local_kj;
+  if (!dielectric_sample_transmission(exit.interface, local_o, Vec2{u[3], u[4]}, &local_kj)) {
+    return {};
+  }
+  const Vec3 omega_kj = normalize(frame.to_world(local_kj));
+  const double cos_kj = -dot(exit.n_k, omega_kj);
+  if (!(cos_kj > 0)) return {};
+
+  const DistanceMixture mixture{medium.sigma_t, options.c_exponential, exit.x_k, omega_kj,
+                                origin.x_i};
+  const DistanceSample distance = distance_mixture_sample(mixture, u[5], u[6], u[7]);
+  if (!distance.valid || !(distance.t > 0)) return {};
+  const Vec3 x_j = exit.x_k + distance.t * omega_kj;
+
+  const SneeSuffix s = make_suffix(origin, medium, exit, x_j, light.wi, light.pdf, light.delta);
+  // Density of what was just sampled, in the suffix's measure (see top_to_bottom_pdf).
+  const double t = distance.t;
+  double pdf = probe_pdf(s, options) * light.pdf * distance.pdf;
+  switch (suffix_measure(s)) {
+    case SuffixMeasure::kFull:
+    case SuffixMeasure::kDeltaLight:
+      pdf *= dielectric_transmission_pdf(exit.interface, local_o, local_kj) / (t * t);
+      break;
+    case SuffixMeasure::kDeltaInterface: {
+      const double eta = exit.interface.eta;
+      pdf *= eta * eta * cos_kj / cos_o / (t * t);
+      break;
+    }
+    case SuffixMeasure::kDeltaBoth:
+      break;
+  }
+
+  const Vec3 inner = exit.x_k - epsilon * exit.n_k, outer = exit.x_k + epsilon * exit.n_k;
+  return finish(Strategy::kTopToBottom, s, light.radiance, pdf, options,
+                {segment_between(inner, x_j), segment_between(x_j, origin.x_i),
+                 ShadowSegment{outer, light.wi, kInfinity}});
+}
+
+SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,
+                                   const ExitPoint& exit, const LightTable& lights,
+                                   const SneeOptions& options, float epsilon,
+                                   std::span<const float, kBottomToTopDimensions> u) {
+  const JointImportance jis{origin.x_i, origin.omega_in, exit.x_k, medium.g, options.c_joint};
+  const JointImportanceSample placed = joint_importance_sample(jis, u.first<4>());
+  if (!placed.valid) return {};
+  const Vec3 x_j = placed.x_j;
+  const Vec3 to_k = exit.x_k - x_j;
+  const float r_jk = length(to_k);
+  if (!(r_jk > 0)) return {};
+  const Vec3 omega_kj = -to_k / r_jk;
+  if (!(dot(exit.n_k, omega_kj) < 0)) return {};  // x_j must lie on the medium side of x_k
+
+  // Outward direction: transmission lobe only, given the medium-side direction.
+  const Frame frame = Frame::from_normal(exit.n_k);
+  const Vec3 local_kj = frame.to_local(omega_kj);
+  Vec3 local_o;
+  if (!dielectric_sample_transmission(exit.interface, local_kj, Vec2{u[4], u[5]}, &local_o)) {
+    return {};
+  }
+  const Vec3 omega_o = normalize(frame.to_world(local_o));
+  if (!(dot(exit.n_k, omega_o) > 0)) return {};
+  const Rgb emitted = lights.escaped_radiance(omega_o);
+  if (is_black(emitted)) return {};
+
+  const SneeSuffix s =
+      make_suffix(origin, medium, exit, x_j, omega_o, lights.escaped_pdf(omega_o), false);
+  double pdf = probe_pdf(s, options) * placed.pdf;
+  if (!exit.interface.delta()) {
+    pdf *= dielectric_transmission_pdf(exit.interface, local_kj, local_o);
+  }
+
+  const Vec3 inner = exit.x_k - epsilon * exit.n_k, outer = exit.x_k + epsilon * exit.n_k;
+  return finish(Strategy::kBottomToTop, s, emitted, pdf, options,
+                {segment_between(origin.x_i, x_j), segment_between(x_j, inner),
+                 ShadowSegment{outer, omega_o, kInfinity}});
+}
+
+double snee_exit_weight(Strategy st, const SneeSuffix& s, const SneeOptions& options) {
+  return mis_weight(st, strategy_pdfs(s, options), options);
+}
+
+}  // namespace snee

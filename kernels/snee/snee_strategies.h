@@ -1,0 +1,79 @@
+// The two subdivision strategies of SNEE (docs/snee.md 3.3-3.4) and the MIS weight of the
+// tracer's own exit events (3.6). No ray is traced here: each strategy returns a candidate whose
+// contribution counts only if every listed segment is unoccluded, so the renderer can resolve
+// visibility in batches.
+//
+// Both strategies start from a medium vertex x_i (with the propagation direction arriving there)
+// and an exit point x_k found by a probe ray from x_i (probe.h), which the caller has checked to
+// be the first hit, on the medium's dielectric boundary. The contribution excludes the path
+// throughput up to x_i (docs/snee.md 1.2: it includes sigma_s(x_i), not the phase function at
+// x_i); the renderer multiplies it in.
+#pragma once
+
+#include <array>
+#include <span>
+
+#include "kernels/lights/light_table.h"
+#include "kernels/snee/snee_options.h"
+#include "kernels/snee/snee_suffix.h"
+
+namespace snee {
+
+struct SneeOrigin {
+  Vec3 x_i;       // medium scattering vertex
+  Vec3 omega_in;  // unit propagation direction arriving at x_i
+};
+
+struct ExitPoint {
+  Vec3 x_k;  // first hit of the probe ray from x_i
+  Vec3 n_k;  // outward geometric normal there
+  DielectricParams interface;
+};
+
+// A segment that must be unoccluded: the ray origin + t direction, 0 < t < t_max.
+struct ShadowSegment {
+  Vec3 origin;
+  Vec3 direction;  // unit
+  float t_max = 0;
+};
+
+struct SneeCandidate {
+  Vec3 x_j;      // sampled middle vertex (medium point)
+  Vec3 omega_o;  // direction from x_k toward the light
+  // Top-to-bottom: x_k -> x_j, x_j -> x_i, x_k -> light.
+  // Bottom-to-top: x_i -> x_j, x_j -> x_k, x_k -> light.
+  std::array<ShadowSegment, 3> segments;
+  Rgb contribution{0.0f};  // w_s F / p_s, assuming all segments are clear
+  double pdf = 0;          // p_s as computed while sampling, in the suffix's measure
+  double weight = 0;       // w_s
+  bool valid = false;
+};
+
+// epsilon: scene-scale offset of ray origins on the boundary, along -n_k for segments inside the
+// medium and +n_k for the light segment. Medium points are never offset.
+
+// Random numbers: u[0] light selection, u[1..2] point on the light, u[3..4] microfacet normal of
+// the inward transmission, u[5] distance technique, u[6] free-flight colour channel, u[7]
+// distance.
+inline constexpr int kTopToBottomDimensions = 8;
+SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
+                                   const ExitPoint& exit, const LightTable& lights,
+                                   const SneeOptions& options, float epsilon,
+                                   std::span<const float, kTopToBottomDimensions> u);
+
+// Random numbers: u[0..3] the middle vertex (u[0] direction technique, u[1..2] direction, u[3]
+// distance; joint_importance.h), u[4..5] microfacet normal of the outward transmission.
+// Only lights reached by escaping rays (environment, cone) are found this way.
+inline constexpr int kBottomToTopDimensions = 6;
+SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,
+                                   const ExitPoint& exit, const LightTable& lights,
+                                   const SneeOptions& options, float epsilon,
+                                   std::span<const float, kBottomToTopDimensions> u);
+
+// MIS weight of the tracer's exit event st (U_B: BSDF-sampled transmission at x_k reaching a
+// light; U_L: light sample at x_k) for the suffix stored along the walk: x_i with its incoming
+// direction, x_j, whether both were medium vertices, and V_first(x_i, x_k). The four-way weight
+// when SNEE can produce the suffix, the tracer's plain two-way weight otherwise.
+double snee_exit_weight(Strategy st, const SneeSuffix& s, const SneeOptions& options);
+
+}  // namespace snee

@@ -1,0 +1,50 @@
+// The wavefront stage kernels. Each is a plain function over a queue slice: it reads the slots
+// listed in its input queue, updates their path state and appends them to the queues of the
+// stages that come next, in input order. None of them allocates, locks or touches files.
+#pragma once
+
+#include "kernels/kernel_context.h"
+#include "kernels/path_state.h"
+#include "kernels/queues.h"
+
+namespace snee {
+
+// The queues one work unit cycles through.
+struct StageQueues {
+  explicit StageQueues(size_t slots);
+  SlotQueue extend;   // rays to trace
+  SlotQueue medium;   // traced rays travelling inside a medium
+  SlotQueue surface;  // rays that reached a surface
+  SlotQueue escaped;  // rays that left the scene
+  SlotQueue probe;    // SNEE: medium vertices waiting for an exit-point probe
+  SlotQueue retire;   // finished paths
+  RayBatch rays;      // scratch for batched Embree queries
+  ShadowQueue shadow;
+};
+
+// Starts camera paths in `slots` for (pixel, sample) pairs; appends them to q.extend.
+void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint32_t* slots,
+                          const uint32_t* pixels, const uint32_t* samples, size_t n, StageQueues& q,
+                          KernelCounters& counters);
+
+// Traces q.extend in one batch and routes each slot to q.medium, q.surface or q.escaped.
+void extend(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters);
+
+// Free flight inside media: scatter (NEE, SNEE probe, phase sampling -> q.extend) or pass to
+// the surface/escape queues.
+void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters);
+
+// Surface interactions: emission, null crossings, diffuse and dielectric BSDFs with NEE and MIS.
+void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters);
+
+// Environment and distant lights seen by escaped rays; the path is retired.
+void shade_escaped(const KernelContext& ctx, PathState& state, StageQueues& q);
+
+// SNEE: traces the exit-point probes of q.probe and turns them into subdivision connections.
+void snee_probe_and_subdivide(const KernelContext& ctx, PathState& state, StageQueues& q,
+                              KernelCounters& counters);
+
+// Resolves every pending light connection in batches and adds the visible ones' radiance.
+void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters);
+
+}  // namespace snee

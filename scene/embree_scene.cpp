@@ -1,0 +1,150 @@
+#include "scene/embree_scene.h"
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace snee {
+
+namespace {
+
+RTCRayHitNp to_embree(const RayArrays& r, const HitArrays& h) {
+  RTCRayHitNp np{};
+  np.ray = {r.org_x, r.org_y, r.org_z, r.tnear, r.dir_x, r.dir_y,
+            r.dir_z, r.time,  r.tfar,  r.mask,  r.id,    r.flags};
+  np.hit.Ng_x = h.ng_x;
+  np.hit.Ng_y = h.ng_y;
+  np.hit.Ng_z = h.ng_z;
+  np.hit.u = h.u;
+  np.hit.v = h.v;
+  np.hit.primID = h.prim_id;
+  np.hit.geomID = h.geom_id;
+  np.hit.instID[0] = h.inst_id;
+  return np;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
+  device_ = rtcNewDevice("verbose=0");
+  if (!device_) throw std::runtime_error("cannot create the Embree device");
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+
+  bounds_min_ = Vec3(kInfinity);
+  bounds_max_ = Vec3(-kInfinity);
+  face_normals_.resize(scene.shapes.size());
+  for (size_t s = 0; s < scene.shapes.size(); ++s) {
+    const Shape& shape = scene.shapes[s];
+    RTCGeometry geom = nullptr;
+    if (shape.kind == ShapeKind::kSphere) {
+      geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+          geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
+      v[0] = shape.center.x;
+      v[1] = shape.center.y;
+      v[2] = shape.center.z;
+      v[3] = shape.radius;
+      bounds_min_ = vmin(bounds_min_, shape.center - Vec3(shape.radius));
+      bounds_max_ = vmax(bounds_max_, shape.center + Vec3(shape.radius));
+    } else {
+      const TriangleMesh& mesh = shape.mesh;
+      geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+      auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                            RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                            mesh.positions.size()));
+      for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        v[3 * i + 0] = mesh.positions[i].x;
+        v[3 * i + 1] = mesh.positions[i].y;
+        v[3 * i + 2] = mesh.positions[i].z;
+        bounds_min_ = vmin(bounds_min_, mesh.positions[i]);
+        bounds_max_ = vmax(bounds_max_, mesh.positions[i]);
+      }
+      auto* idx = static_cast<uint32_t*>(
+          rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                  3 * sizeof(uint32_t), mesh.triangle_count()));
+      std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
+      auto& normals = face_normals_[s];
+      normals.resize(mesh.triangle_count());
+      for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const Vec3 p0 = mesh.positions[mesh.indices[3 * t]];
+        const Vec3 p1 = mesh.positions[mesh.indices[3 * t + 1]];
+        const Vec3 p2 = mesh.positions[mesh.indices[3 * t + 2]];
+        const Vec3 c = cross(p1 - p0, p2 - p0);
+        const float len = length(c);
+        normals[t] = len > 0 ? c / len : Vec3(0, 0, 1);
+      }
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(scene_, geom, static_cast<unsigned>(s));
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(scene_);
+  // Errors are checked once here rather than through a callback: exceptions must not cross
+  // Embree's C frames.
+  if (const RTCError error = rtcGetDeviceError(device_); error != RTC_ERROR_NONE) {
+    throw std::runtime_error("Embree could not build the scene (error code " +
+                             std::to_string(int(error)) + ")");
+  }
+  if (scene.shapes.empty()) bounds_min_ = bounds_max_ = Vec3(0.0f);
+  const float extent =
+      max_component(vmax(vmax(bounds_max_, -bounds_min_), bounds_max_ - bounds_min_));
+  epsilon_ = 1e-4f * std::max(1.0f, extent);
+}
+
+EmbreeScene::~EmbreeScene() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+void EmbreeScene::intersect(const RayArrays& rays, const HitArrays& hits, unsigned n,
+                            bool coherent) const {
+  if (n == 0) return;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags =
+      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  RTCRayHitNp np = to_embree(rays, hits);
+  rtcIntersectNp(scene_, &context, &np, n);
+}
+
+void EmbreeScene::occluded(const RayArrays& rays, unsigned n) const {
+  if (n == 0) return;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  RTCRayNp np{rays.org_x, rays.org_y, rays.org_z, rays.tnear, rays.dir_x, rays.dir_y,
+              rays.dir_z, rays.time,  rays.tfar,  rays.mask,  rays.id,    rays.flags};
+  rtcOccludedNp(scene_, &context, &np, n);
+}
+
+bool EmbreeScene::intersect1(Vec3 org, Vec3 dir, float tnear, float tfar, float* t, uint32_t* geom,
+                             uint32_t* prim) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray = {org.x, org.y, org.z, tnear, dir.x, dir.y, dir.z, 0.0f, tfar, 0xFFFFFFFFu, 0, 0};
+  rh.hit.geomID = kInvalidId;
+  rh.hit.instID[0] = kInvalidId;
+  rtcIntersect1(scene_, &context, &rh);
+  *t = rh.ray.tfar;
+  *geom = rh.hit.geomID;
+  *prim = rh.hit.primID;
+  return rh.hit.geomID != kInvalidId;
+}
+
+bool EmbreeScene::occluded1(Vec3 org, Vec3 dir, float tnear, float tfar) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{org.x, org.y, org.z, tnear, dir.x, dir.y, dir.z, 0.0f, tfar, 0xFFFFFFFFu, 0, 0};
+  rtcOccluded1(scene_, &context, &ray);
+  return ray.tfar < 0;
+}
+
+Vec3 EmbreeScene::normal(uint32_t geom, uint32_t prim, Vec3 p) const {
+  const Shape& shape = description_->shapes[geom];
+  if (shape.kind == ShapeKind::kSphere) return normalize(p - shape.center);
+  return face_normals_[geom][prim];
+}
+
+}  // namespace snee

@@ -1,0 +1,63 @@
+// The one place that talks to Embree: builds the device and scene from the scene description
+// and answers batched closest-hit and occlusion queries over rays in Embree's SoA stream layout.
+// Keeping every Embree call here means a port to Embree 4 (which dropped streams) touches one
+// file. Geometry IDs equal shape indices.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace snee {
+
+inline constexpr uint32_t kInvalidId = RTC_INVALID_GEOMETRY_ID;
+
+// Non-owning views of SoA ray arrays (each of length >= n, 16-byte aligned).
+struct RayArrays {
+  float *org_x, *org_y, *org_z, *tnear;
+  float *dir_x, *dir_y, *dir_z, *time;
+  float* tfar;
+  uint32_t *mask, *id, *flags;
+};
+struct HitArrays {
+  float *ng_x, *ng_y, *ng_z, *u, *v;
+  uint32_t *prim_id, *geom_id, *inst_id;
+};
+
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(const Scene& scene);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // Closest hit for n rays; results in tfar (hit distance) and hits.geom_id/prim_id
+  // (kInvalidId on a miss). `coherent` is for camera rays only.
+  void intersect(const RayArrays& rays, const HitArrays& hits, unsigned n, bool coherent) const;
+  // Occlusion for n rays: tfar becomes -inf where something lies in [tnear, tfar].
+  void occluded(const RayArrays& rays, unsigned n) const;
+  // Path-at-a-time queries for the megakernel schedule and tests.
+  bool intersect1(Vec3 org, Vec3 dir, float tnear, float tfar, float* t, uint32_t* geom,
+                  uint32_t* prim) const;
+  bool occluded1(Vec3 org, Vec3 dir, float tnear, float tfar) const;
+
+  // Outward geometric normal (unit) at point p on primitive prim of shape geom.
+  Vec3 normal(uint32_t geom, uint32_t prim, Vec3 p) const;
+  // Offset for ray origins leaving a surface, proportional to the scene's extent.
+  float ray_epsilon() const { return epsilon_; }
+  Vec3 bounds_min() const { return bounds_min_; }
+  Vec3 bounds_max() const { return bounds_max_; }
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  const Scene* description_;
+  std::vector<std::vector<Vec3>> face_normals_;  // per mesh shape
+  float epsilon_ = 1e-4f;
+  Vec3 bounds_min_, bounds_max_;
+};
+
+}  // namespace snee

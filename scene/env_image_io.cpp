@@ -1,0 +1,66 @@
+#include "scene/env_image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <filesystem>
+#include <vector>
+
+#include "scene/scene_error.h"
+
+namespace snee {
+
+namespace {
+
+float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+bool is_srgb_encoded(const OIIO::ImageSpec& spec) {
+  const std::string color_space = spec.get_string_attribute("oiio:ColorSpace");
+  if (OIIO::Strutil::iequals(color_space, "sRGB")) return true;
+  if (OIIO::Strutil::iequals(color_space, "Linear")) return false;
+  return !spec.format.is_floating_point();
+}
+
+}  // namespace
+
+EnvImage read_env_image(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw SceneError(path + ": cannot read environment image: no such file");
+  }
+  auto input = OIIO::ImageInput::open(path);
+  if (!input) {
+    throw SceneError(path + ": cannot read environment image: " + OIIO::geterror());
+  }
+  const OIIO::ImageSpec spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    throw SceneError(path + ": the environment image is empty");
+  }
+  const int channels = spec.nchannels;
+  std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+    throw SceneError(path + ": cannot decode environment image: " + input->geterror());
+  }
+  const bool srgb = is_srgb_encoded(spec);
+
+  EnvImage image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.source = path;
+  image.pixels.resize(static_cast<size_t>(spec.width) * spec.height);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    const float* p = &data[i * channels];
+    Rgb c = channels >= 3 ? Rgb(p[0], p[1], p[2]) : Rgb(p[0]);
+    if (!is_finite(c)) {
+      throw SceneError(path + ": pixel (" + std::to_string(i % spec.width) + ", " +
+                       std::to_string(i / spec.width) + ") is not a finite number");
+    }
+    if (srgb) c = Rgb(srgb_to_linear(c.x), srgb_to_linear(c.y), srgb_to_linear(c.z));
+    // Filtered HDR captures sometimes hold tiny negative values; radiance cannot be negative.
+    image.pixels[i] = vmax(c, Rgb(0.0f));
+  }
+  return image;
+}
+
+}  // namespace snee

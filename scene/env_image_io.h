@@ -1,0 +1,16 @@
+// Reading a lat-long environment image (any format OpenImageIO reads: EXR, HDR, PNG, ...) into
+// linear RGB. Images with integer pixels (8- or 16-bit) are taken as sRGB-encoded and decoded,
+// unless the file declares a linear colour space; float images are linear already. One or two
+// channels become grey; of more than three, the first three are used. Failures throw SceneError
+// naming the file.
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace snee {
+
+EnvImage read_env_image(const std::string& path);
+
+}  // namespace snee

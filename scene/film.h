@@ -1,0 +1,39 @@
+// A finished (or partial) image: per-pixel mean radiance and the variance of that mean, plus
+// the metadata written beside it. Pure data; film_io.cpp writes it through OpenImageIO.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/math.h"
+
+namespace snee {
+
+struct FilmMetadata {
+  int spp = 0;
+  std::string integrator;
+  uint32_t seed = 0;
+  double render_seconds = 0;
+  std::string scene;
+};
+
+struct Film {
+  int width = 0;
+  int height = 0;
+  std::vector<Rgb> mean;              // row-major, top row first
+  std::vector<Rgb> variance_of_mean;  // per channel, sample variance / spp
+  FilmMetadata meta;
+  Rgb& at(int x, int y) { return mean[static_cast<size_t>(y) * width + x]; }
+  const Rgb& at(int x, int y) const { return mean[static_cast<size_t>(y) * width + x]; }
+};
+
+// Writes a linear float EXR with channels R,G,B and variance.R/G/B and the metadata as
+// "snee:*" attributes. Throws std::runtime_error naming the file on failure.
+void write_exr(const Film& film, const std::string& path);
+// Writes an 8-bit sRGB preview (clamped, exposure 1); format from the extension (PNG, JPEG...).
+void write_preview(const Film& film, const std::string& path);
+// Reads an EXR written by write_exr (variance channels optional). Throws on failure.
+Film read_exr(const std::string& path);
+
+}  // namespace snee

@@ -1,0 +1,146 @@
+// Film <-> image files through OpenImageIO. The EXR keeps 32-bit floats: the variance channels
+// feed convergence tests and half precision would quantise small variances to zero.
+//
+// EXR layout: channels "R", "G", "B" (mean radiance) and "variance.R", "variance.G",
+// "variance.B" (variance of the mean), all FLOAT; metadata attributes snee:spp (int),
+// snee:integrator (string), snee:seed (string, decimal: EXR has no unsigned 32-bit attribute),
+// snee:render_seconds (double), snee:scene (string), snee:version (string) and "Software".
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include <OpenImageIO/imageio.h>
+
+#include "scene/film.h"
+
+namespace snee {
+namespace {
+
+constexpr std::array<const char*, 6> kChannels = {"R",          "G",          "B",
+                                                  "variance.R", "variance.G", "variance.B"};
+
+[[noreturn]] void fail(const std::string& what, const std::string& path, const std::string& why) {
+  throw std::runtime_error(what + " '" + path + "': " + (why.empty() ? "unknown error" : why));
+}
+
+std::unique_ptr<OIIO::ImageOutput> create_output(const std::string& path) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) fail("cannot write image", path, OIIO::geterror());
+  return out;
+}
+
+void write_pixels(OIIO::ImageOutput& out, const OIIO::ImageSpec& spec, const std::string& path,
+                  OIIO::TypeDesc type, const void* pixels) {
+  if (!out.open(path, spec)) fail("cannot write image", path, out.geterror());
+  const bool written = out.write_image(type, pixels);
+  const bool closed = out.close();
+  if (!written || !closed) fail("cannot write image", path, out.geterror());
+}
+
+size_t pixel_count(const Film& film) {
+  return static_cast<size_t>(film.width) * static_cast<size_t>(film.height);
+}
+
+void check_film(const Film& film, const std::string& path) {
+  if (film.width <= 0 || film.height <= 0 || film.mean.size() != pixel_count(film))
+    fail("cannot write image", path, "film has no pixels or inconsistent size");
+}
+
+// The sRGB transfer function (IEC 61966-2-1), then clamping to [0, 1]; NaN shows as black.
+uint8_t srgb8(float linear) {
+  if (!(linear > 0.0f)) return 0;
+  if (linear >= 1.0f) return 255;
+  const float encoded =
+      linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+  return static_cast<uint8_t>(std::lround(encoded * 255.0f));
+}
+
+}  // namespace
+
+void write_exr(const Film& film, const std::string& path) {
+  check_film(film, path);
+  const bool has_variance = film.variance_of_mean.size() == film.mean.size();
+  const int nchannels = has_variance ? 6 : 3;
+  OIIO::ImageSpec spec(film.width, film.height, nchannels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames.assign(kChannels.begin(), kChannels.begin() + nchannels);
+  spec.attribute("compression", "zip");
+  spec.attribute("Software", "snee " SNEE_VERSION);
+  spec.attribute("snee:version", SNEE_VERSION);
+  spec.attribute("snee:spp", film.meta.spp);
+  spec.attribute("snee:integrator", film.meta.integrator);
+  spec.attribute("snee:seed", std::to_string(film.meta.seed));
+  spec.attribute("snee:render_seconds", OIIO::TypeDesc::DOUBLE, &film.meta.render_seconds);
+  spec.attribute("snee:scene", film.meta.scene);
+
+  std::vector<float> pixels;
+  pixels.reserve(pixel_count(film) * nchannels);
+  for (size_t i = 0; i < pixel_count(film); ++i) {
+    for (int c = 0; c < 3; ++c) pixels.push_back(film.mean[i][c]);
+    if (has_variance)
+      for (int c = 0; c < 3; ++c) pixels.push_back(film.variance_of_mean[i][c]);
+  }
+  auto out = create_output(path);
+  write_pixels(*out, spec, path, OIIO::TypeDesc::FLOAT, pixels.data());
+}
+
+void write_preview(const Film& film, const std::string& path) {
+  check_film(film, path);
+  OIIO::ImageSpec spec(film.width, film.height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("Software", "snee " SNEE_VERSION);
+  std::vector<uint8_t> pixels;
+  pixels.reserve(pixel_count(film) * 3);
+  for (const Rgb& rgb : film.mean)
+    for (int c = 0; c < 3; ++c) pixels.push_back(srgb8(rgb[c]));
+  auto out = create_output(path);
+  write_pixels(*out, spec, path, OIIO::TypeDesc::UINT8, pixels.data());
+}
+
+Film read_exr(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) fail("cannot read image", path, OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+
+  // The EXR reader may reorder channels, so they are looked up by name.
+  std::array<int, 6> index{};
+  for (size_t c = 0; c < kChannels.size(); ++c) {
+    index[c] = spec.channelindex(kChannels[c]);
+    if (c < 3 && index[c] < 0)
+      fail("cannot read image", path, std::string("no channel ") + kChannels[c]);
+  }
+  const bool has_variance = index[3] >= 0 && index[4] >= 0 && index[5] >= 0;
+
+  std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    fail("cannot read image", path, in->geterror());
+
+  Film film;
+  film.width = spec.width;
+  film.height = spec.height;
+  film.mean.resize(pixel_count(film));
+  if (has_variance) film.variance_of_mean.resize(pixel_count(film));
+  for (size_t i = 0; i < pixel_count(film); ++i) {
+    const float* px = &pixels[i * spec.nchannels];
+    for (int c = 0; c < 3; ++c) {
+      film.mean[i][c] = px[index[c]];
+      if (has_variance) film.variance_of_mean[i][c] = px[index[c + 3]];
+    }
+  }
+
+  film.meta.spp = spec.get_int_attribute("snee:spp");
+  film.meta.integrator = spec.get_string_attribute("snee:integrator");
+  const std::string_view seed = spec.get_string_attribute("snee:seed", "0");
+  if (std::from_chars(seed.data(), seed.data() + seed.size(), film.meta.seed).ec != std::errc())
+    fail("cannot read image", path, "snee:seed is not an unsigned integer");
+  film.meta.scene = spec.get_string_attribute("snee:scene");
+  spec.getattribute("snee:render_seconds", OIIO::TypeDesc::DOUBLE, &film.meta.render_seconds);
+  return film;
+}
+
+}  // namespace snee

@@ -1,0 +1,20 @@
+// Reading triangle meshes from Wavefront OBJ and Stanford PLY files. Positions come back exactly
+// as stored (no transform, winding as in the file); polygons are split into triangle fans.
+// Failures throw SceneError naming the file and the line, face or element at fault.
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace snee {
+
+// Chooses the reader by extension (.obj or .ply, any case).
+TriangleMesh load_mesh(const std::string& path);
+TriangleMesh load_obj(const std::string& path);
+// ASCII, binary little-endian and binary big-endian PLY. The vertex element must have x, y and
+// z; the face element a list property named vertex_indices or vertex_index. Every other
+// element and property is read past and ignored.
+TriangleMesh load_ply(const std::string& path);
+
+}  // namespace snee

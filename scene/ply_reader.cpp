@@ -1,0 +1,434 @@
+// PLY (Turk 1994): a text header declares elements, each with a count and a property list, then
+// the body stores the elements in order, as text or as packed binary of either byte order.
+// The dragon scan is a 34 MB text file, so numbers are parsed with std::from_chars over the
+// whole file in memory rather than through streams.
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/mesh_io.h"
+#include "scene/scene_error.h"
+
+namespace snee {
+
+namespace {
+
+enum class PlyType : uint8_t {
+  kInt8,
+  kUint8,
+  kInt16,
+  kUint16,
+  kInt32,
+  kUint32,
+  kFloat32,
+  kFloat64
+};
+
+std::optional<PlyType> parse_type(std::string_view name) {
+  if (name == "char" || name == "int8") return PlyType::kInt8;
+  if (name == "uchar" || name == "uint8") return PlyType::kUint8;
+  if (name == "short" || name == "int16") return PlyType::kInt16;
+  if (name == "ushort" || name == "uint16") return PlyType::kUint16;
+  if (name == "int" || name == "int32") return PlyType::kInt32;
+  if (name == "uint" || name == "uint32") return PlyType::kUint32;
+  if (name == "float" || name == "float32") return PlyType::kFloat32;
+  if (name == "double" || name == "float64") return PlyType::kFloat64;
+  return std::nullopt;
+}
+
+size_t type_size(PlyType t) {
+  switch (t) {
+    case PlyType::kInt8:
+    case PlyType::kUint8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUint16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUint32:
+    case PlyType::kFloat32:
+      return 4;
+    case PlyType::kFloat64:
+      return 8;
+  }
+  return 0;
+}
+
+bool is_integer(PlyType t) {
+  return t != PlyType::kFloat32 && t != PlyType::kFloat64;
+}
+
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::kFloat32;  // of the items, for a list
+  bool is_list = false;
+  PlyType count_type = PlyType::kUint8;
+};
+
+struct PlyElement {
+  std::string name;
+  size_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+enum class PlyFormat : uint8_t { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
+
+struct PlyHeader {
+  PlyFormat format = PlyFormat::kAscii;
+  std::vector<PlyElement> elements;
+  size_t body_offset = 0;  // first byte after "end_header\n"
+  size_t body_line = 0;    // line number of the first body line
+};
+
+std::string read_whole_file(const std::string& path) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                       &std::fclose);
+  if (!file) throw SceneError(path + ": cannot read mesh: " + std::strerror(errno));
+  std::string data;
+  char buffer[1 << 16];
+  size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) data.append(buffer, n);
+  if (std::ferror(file.get())) throw SceneError(path + ": read error: " + std::strerror(errno));
+  return data;
+}
+
+std::vector<std::string_view> split_words(std::string_view line) {
+  std::vector<std::string_view> words;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    size_t j = i;
+    while (j < line.size() && line[j] != ' ' && line[j] != '\t' && line[j] != '\r') ++j;
+    if (j > i) words.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return words;
+}
+
+PlyHeader parse_header(const std::string& path, std::string_view data) {
+  PlyHeader header;
+  size_t pos = 0;
+  size_t line_number = 0;
+  bool seen_format = false;
+  auto fail = [&](const std::string& what) -> SceneError {
+    return SceneError(path + ": line " + std::to_string(line_number) + ": " + what);
+  };
+  while (true) {
+    if (pos >= data.size()) {
+      throw SceneError(path + ": the PLY header has no end_header line");
+    }
+    size_t eol = data.find('\n', pos);
+    if (eol == std::string_view::npos) eol = data.size();
+    const std::string_view line = data.substr(pos, eol - pos);
+    pos = eol + 1;
+    ++line_number;
+    const std::vector<std::string_view> w = split_words(line);
+
+    if (line_number == 1) {
+      if (w.size() != 1 || w[0] != "ply") throw fail("not a PLY file (expected 'ply' first)");
+      continue;
+    }
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "end_header") break;
+    if (w[0] == "format") {
+      if (w.size() != 3) throw fail("expected 'format <ascii|binary_*> 1.0'");
+      if (w[1] == "ascii") {
+        header.format = PlyFormat::kAscii;
+      } else if (w[1] == "binary_little_endian") {
+        header.format = PlyFormat::kBinaryLittleEndian;
+      } else if (w[1] == "binary_big_endian") {
+        header.format = PlyFormat::kBinaryBigEndian;
+      } else {
+        throw fail("unknown format '" + std::string(w[1]) + "'");
+      }
+      seen_format = true;
+    } else if (w[0] == "element") {
+      size_t count = 0;
+      if (w.size() != 3 ||
+          std::from_chars(w[2].data(), w[2].data() + w[2].size(), count).ec != std::errc()) {
+        throw fail("expected 'element <name> <count>'");
+      }
+      header.elements.push_back({std::string(w[1]), count, {}});
+    } else if (w[0] == "property") {
+      if (header.elements.empty()) throw fail("property declared before any element");
+      PlyProperty property;
+      if (w.size() == 5 && w[1] == "list") {
+        const auto count_type = parse_type(w[2]);
+        const auto item_type = parse_type(w[3]);
+        if (!count_type || !is_integer(*count_type) || !item_type) {
+          throw fail("expected 'property list <integer type> <type> <name>'");
+        }
+        property = {std::string(w[4]), *item_type, true, *count_type};
+      } else if (w.size() == 3) {
+        const auto type = parse_type(w[1]);
+        if (!type) throw fail("unknown property type '" + std::string(w[1]) + "'");
+        property.name = std::string(w[2]);
+        property.type = *type;
+      } else {
+        throw fail("expected 'property <type> <name>' or 'property list <type> <type> <name>'");
+      }
+      header.elements.back().properties.push_back(property);
+    } else {
+      throw fail("unknown header keyword '" + std::string(w[0]) + "'");
+    }
+  }
+  if (!seen_format) throw SceneError(path + ": the PLY header has no format line");
+  header.body_offset = pos;
+  header.body_line = line_number + 1;
+  return header;
+}
+
+// Text body: whitespace-separated numbers; element boundaries are not tied to lines.
+class AsciiBody {
+ public:
+  AsciiBody(std::string_view data, size_t offset, size_t first_line)
+      : p_(data.data() + offset), end_(data.data() + data.size()), line_(first_line) {}
+
+  // Every value comes back as a double, which holds every PLY integer exactly.
+  bool read(PlyType type, double* value) {
+    if (!next_token()) return false;
+    const char* token_end = p_;
+    while (token_end < end_ && !is_space(*token_end)) ++token_end;
+    std::from_chars_result result;
+    if (is_integer(type)) {
+      int64_t i = 0;
+      result = std::from_chars(p_, token_end, i);
+      *value = static_cast<double>(i);
+    } else {
+      result = std::from_chars(p_, token_end, *value);
+    }
+    const bool ok = result.ec == std::errc() && result.ptr == token_end;
+    p_ = token_end;
+    return ok;
+  }
+  bool skip(PlyType) {
+    if (!next_token()) return false;
+    while (p_ < end_ && !is_space(*p_)) ++p_;
+    return true;
+  }
+  std::string where() const { return "line " + std::to_string(line_); }
+
+ private:
+  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+  bool next_token() {
+    while (p_ < end_ && is_space(*p_)) {
+      if (*p_ == '\n') ++line_;
+      ++p_;
+    }
+    return p_ < end_;
+  }
+
+  const char* p_;
+  const char* end_;
+  size_t line_;
+};
+
+class BinaryBody {
+ public:
+  BinaryBody(std::string_view data, size_t offset, bool big_endian)
+      : begin_(data.data()),
+        p_(data.data() + offset),
+        end_(data.data() + data.size()),
+        swap_(big_endian != (std::endian::native == std::endian::big)) {}
+
+  bool read(PlyType type, double* value) {
+    const size_t n = type_size(type);
+    if (static_cast<size_t>(end_ - p_) < n) return false;
+    unsigned char bytes[8] = {};
+    for (size_t k = 0; k < n && k < sizeof bytes; ++k) {
+      bytes[k] = static_cast<unsigned char>(p_[swap_ ? n - 1 - k : k]);
+    }
+    p_ += n;
+    *value = decode(type, bytes);
+    return true;
+  }
+  bool skip(PlyType type) {
+    const size_t n = type_size(type);
+    if (static_cast<size_t>(end_ - p_) < n) return false;
+    p_ += n;
+    return true;
+  }
+  std::string where() const { return "byte " + std::to_string(p_ - begin_); }
+
+ private:
+  template <typename T>
+  static double as(const unsigned char* bytes) {
+    T v;
+    std::memcpy(&v, bytes, sizeof v);
+    return static_cast<double>(v);
+  }
+  static double decode(PlyType type, const unsigned char* bytes) {
+    switch (type) {
+      case PlyType::kInt8:
+        return as<int8_t>(bytes);
+      case PlyType::kUint8:
+        return as<uint8_t>(bytes);
+      case PlyType::kInt16:
+        return as<int16_t>(bytes);
+      case PlyType::kUint16:
+        return as<uint16_t>(bytes);
+      case PlyType::kInt32:
+        return as<int32_t>(bytes);
+      case PlyType::kUint32:
+        return as<uint32_t>(bytes);
+      case PlyType::kFloat32:
+        return as<float>(bytes);
+      case PlyType::kFloat64:
+        return as<double>(bytes);
+    }
+    return 0;
+  }
+
+  const char* begin_;
+  const char* p_;
+  const char* end_;
+  bool swap_;
+};
+
+// What the vertex and face elements mean to us: which property holds x, y, z and which list
+// holds the corner indices.
+struct MeshLayout {
+  size_t vertex_element = 0, face_element = 0;
+  std::vector<int> coordinate_of;  // per vertex property: 0..2 for x..z, -1 otherwise
+  size_t index_property = 0;
+};
+
+MeshLayout find_layout(const std::string& path, const PlyHeader& header) {
+  MeshLayout layout;
+  std::optional<size_t> vertex, face;
+  for (size_t e = 0; e < header.elements.size(); ++e) {
+    if (header.elements[e].name == "vertex") vertex = e;
+    if (header.elements[e].name == "face") face = e;
+  }
+  if (!vertex) throw SceneError(path + ": the PLY header declares no 'vertex' element");
+  if (!face) throw SceneError(path + ": the PLY header declares no 'face' element");
+  layout.vertex_element = *vertex;
+  layout.face_element = *face;
+
+  const std::vector<PlyProperty>& vertex_props = header.elements[*vertex].properties;
+  layout.coordinate_of.assign(vertex_props.size(), -1);
+  bool has[3] = {false, false, false};
+  for (size_t i = 0; i < vertex_props.size(); ++i) {
+    const std::string& name = vertex_props[i].name;
+    const int axis = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
+    if (axis < 0) continue;
+    if (vertex_props[i].is_list) {
+      throw SceneError(path + ": vertex property '" + name + "' is a list (expected a number)");
+    }
+    layout.coordinate_of[i] = axis;
+    has[axis] = true;
+  }
+  if (!has[0] || !has[1] || !has[2]) {
+    throw SceneError(path + ": the vertex element lacks one of the properties x, y, z");
+  }
+
+  const std::vector<PlyProperty>& face_props = header.elements[*face].properties;
+  bool found = false;
+  for (size_t i = 0; i < face_props.size(); ++i) {
+    if (face_props[i].name == "vertex_indices" || face_props[i].name == "vertex_index") {
+      if (!face_props[i].is_list || !is_integer(face_props[i].type)) {
+        throw SceneError(path + ": face property '" + face_props[i].name +
+                         "' must be a list of integers");
+      }
+      layout.index_property = i;
+      found = true;
+    }
+  }
+  if (!found) {
+    throw SceneError(path +
+                     ": the face element has no list property vertex_indices or vertex_index");
+  }
+  return layout;
+}
+
+template <typename Body>
+TriangleMesh read_body(const std::string& path, const PlyHeader& header, const MeshLayout& layout,
+                       Body body) {
+  TriangleMesh mesh;
+  mesh.positions.resize(header.elements[layout.vertex_element].count);
+  mesh.indices.reserve(3 * header.elements[layout.face_element].count);
+  std::vector<uint32_t> corners;
+
+  for (size_t e = 0; e < header.elements.size(); ++e) {
+    const PlyElement& element = header.elements[e];
+    auto fail = [&](size_t instance, const std::string& what) -> SceneError {
+      return SceneError(path + ": " + body.where() + " (" + element.name + " " +
+                        std::to_string(instance) + "): " + what);
+    };
+    for (size_t i = 0; i < element.count; ++i) {
+      for (size_t p = 0; p < element.properties.size(); ++p) {
+        const PlyProperty& property = element.properties[p];
+        if (!property.is_list) {
+          const bool wanted = e == layout.vertex_element && layout.coordinate_of[p] >= 0;
+          if (!wanted) {
+            if (!body.skip(property.type)) throw fail(i, "unexpected end of file");
+            continue;
+          }
+          double value;
+          if (!body.read(property.type, &value) || !std::isfinite(static_cast<float>(value))) {
+            throw fail(i, "expected a finite number for property '" + property.name + "'");
+          }
+          mesh.positions[i][layout.coordinate_of[p]] = static_cast<float>(value);
+          continue;
+        }
+
+        double count_value;
+        if (!body.read(property.count_type, &count_value) || count_value < 0) {
+          throw fail(i, "expected a non-negative list length for property '" + property.name + "'");
+        }
+        const auto count = static_cast<size_t>(count_value);
+        const bool indices = e == layout.face_element && p == layout.index_property;
+        if (!indices) {
+          for (size_t k = 0; k < count; ++k) {
+            if (!body.skip(property.type)) throw fail(i, "unexpected end of file");
+          }
+          continue;
+        }
+        if (count < 3) {
+          throw fail(i, "face has " + std::to_string(count) + " vertices (expected at least 3)");
+        }
+        corners.resize(count);
+        for (size_t k = 0; k < count; ++k) {
+          double index;
+          if (!body.read(property.type, &index)) throw fail(i, "expected a vertex index");
+          if (index < 0 || index >= static_cast<double>(mesh.positions.size())) {
+            throw fail(i, "vertex index " + std::to_string(static_cast<int64_t>(index)) +
+                              " is out of range (the file has " +
+                              std::to_string(mesh.positions.size()) + " vertices)");
+          }
+          corners[k] = static_cast<uint32_t>(index);
+        }
+        for (size_t k = 1; k + 1 < count; ++k) {
+          mesh.indices.insert(mesh.indices.end(), {corners[0], corners[k], corners[k + 1]});
+        }
+      }
+    }
+  }
+  if (mesh.indices.empty()) throw SceneError(path + ": the PLY file has no faces");
+  return mesh;
+}
+
+}  // namespace
+
+TriangleMesh load_ply(const std::string& path) {
+  const std::string data = read_whole_file(path);
+  const PlyHeader header = parse_header(path, data);
+  const MeshLayout layout = find_layout(path, header);
+  if (header.format == PlyFormat::kAscii) {
+    return read_body(path, header, layout, AsciiBody(data, header.body_offset, header.body_line));
+  }
+  return read_body(
+      path, header, layout,
+      BinaryBody(data, header.body_offset, header.format == PlyFormat::kBinaryBigEndian));
+}
+
+}  // namespace snee

@@ -1,0 +1,118 @@
+// The scene description: plain data that says *what* is rendered (camera, shapes, materials,
+// media, lights, render settings), with no knowledge of *how*. Loaders fill it; the Embree
+// scene and the kernels' light tables are built from it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/math.h"
+
+namespace snee {
+
+struct Camera {
+  Vec3 position{0, 0, 5};
+  Vec3 look_at{0, 0, 0};
+  Vec3 up{0, 1, 0};
+  float fov_y_degrees = 40.0f;  // vertical field of view
+  int width = 256;
+  int height = 256;
+};
+
+enum class MaterialKind : uint8_t {
+  kDiffuse,     // Lambertian, two-sided
+  kDielectric,  // Fresnel interface; roughness 0 = smooth, otherwise GGX alpha used directly
+  kNull,        // index-matched interface: only bounds a medium, invisible to every ray
+};
+
+struct Material {
+  std::string name;
+  MaterialKind kind = MaterialKind::kDiffuse;
+  Rgb albedo{0.5f};        // diffuse
+  float ior = 1.5f;        // dielectric: interior index / exterior index
+  float roughness = 0.0f;  // dielectric: GGX alpha
+};
+
+// Homogeneous participating medium; coefficients per scene unit.
+struct Medium {
+  std::string name;
+  Rgb sigma_s{1.0f};
+  Rgb sigma_a{0.0f};
+  float g = 0.0f;  // Henyey-Greenstein asymmetry
+  Rgb sigma_t() const { return sigma_s + sigma_a; }
+};
+
+// World-space triangle mesh with outward-facing winding (counter-clockwise seen from outside).
+struct TriangleMesh {
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> indices;  // 3 per triangle
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+enum class ShapeKind : uint8_t { kMesh, kSphere };
+
+struct Shape {
+  std::string name;
+  ShapeKind kind = ShapeKind::kMesh;
+  TriangleMesh mesh;         // kMesh (quads and planes are loaded as two-triangle meshes)
+  Vec3 center;               // kSphere, world space
+  float radius = 1;          // kSphere, world space
+  int material = -1;         // index into Scene::materials
+  int interior_medium = -1;  // index into Scene::media, -1 = none
+  Rgb emission{0.0f};        // radiance leaving the front side; non-zero makes it an area light
+  bool closed = true;        // false if the mesh has boundary edges (SNEE needs closed)
+  std::string source;        // file it came from, for messages
+};
+
+enum class LightKind : uint8_t {
+  kDirectional,  // delta in direction; irradiance on a surface facing it
+  kCone,         // distant light of constant radiance within a cone ("solid-angle light")
+  kConstantEnv,  // constant radiance from every direction
+  kEnvMap,       // lat-long image, importance sampled
+  kPoint,        // delta in position; intensity
+  kArea,         // emissive shape (Shape::emission), referenced by index
+};
+
+// Lat-long environment image in linear RGB. Direction convention (y up):
+// u = (atan2(d.x, -d.z) / (2 pi) + 0.5), v = acos(d.y) / pi; pixel (0,0) is at u=0, v=0 (top).
+struct EnvImage {
+  int width = 0;
+  int height = 0;
+  std::vector<Rgb> pixels;  // row-major, top row first
+  std::string source;
+};
+
+struct Light {
+  LightKind kind = LightKind::kDirectional;
+  Vec3 direction{0, 1, 0};  // unit, *toward* the light (directional and cone axis)
+  Rgb irradiance{1.0f};     // directional
+  float half_angle = 0;     // cone, radians
+  Rgb radiance{1.0f};       // cone, constant env; scale for env map
+  Vec3 position;            // point
+  Rgb intensity{1.0f};      // point
+  int env_image = -1;       // kEnvMap: index into Scene::env_images
+  Transform env_rotation;   // kEnvMap: world direction = env_rotation.vector(map direction)
+  int shape = -1;           // kArea: index into Scene::shapes
+};
+
+// Defaults a scene may carry; the command line overrides them.
+struct RenderSettings {
+  int spp = 64;
+  int max_depth = 1024;
+  uint32_t seed = 0;
+  std::string integrator = "pt";
+};
+
+struct Scene {
+  std::string name;
+  Camera camera;
+  std::vector<Material> materials;
+  std::vector<Medium> media;
+  std::vector<Shape> shapes;
+  std::vector<Light> lights;
+  std::vector<EnvImage> env_images;
+  RenderSettings render;
+};
+
+}  // namespace snee

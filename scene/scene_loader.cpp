@@ -1,0 +1,544 @@
+#include "scene/scene_loader.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "scene/env_image_io.h"
+#include "scene/json_reader.h"
+#include "scene/mesh_io.h"
+#include "scene/mesh_topology.h"
+#include "scene/procedural_sky.h"
+
+namespace snee {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Mesh and image paths starting with this prefix name files of the repository's data/ folder
+// (SNEE_DATA_DIR), wherever the scene file lives.
+constexpr std::string_view kDataPrefix = "data/";
+constexpr int kSkyWidth = 128, kSkyHeight = 64;
+
+json to_json(Vec3 v) {
+  return json::array({v.x, v.y, v.z});
+}
+
+json to_json(const Transform& t) {
+  json rows = json::array();
+  for (const auto& row : t.m) rows.push_back(json::array({row[0], row[1], row[2], row[3]}));
+  return json::array({json{{"matrix", rows}}});
+}
+
+float degrees_to_radians(float degrees) {
+  return degrees * (kPi / 180.0f);
+}
+
+// The three columns of the linear part.
+Vec3 column(const Transform& t, int j) {
+  return {t.m[0][j], t.m[1][j], t.m[2][j]};
+}
+
+bool is_similarity(const Transform& t) {
+  const float s2 = dot(column(t, 0), column(t, 0));
+  const float tolerance = 1e-4f * s2;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      const float expected = i == j ? s2 : 0.0f;
+      if (std::fabs(dot(column(t, i), column(t, j)) - expected) > tolerance) return false;
+    }
+  }
+  return true;
+}
+
+bool is_rotation(const Transform& t) {
+  return is_similarity(t) && std::fabs(dot(column(t, 0), column(t, 0)) - 1) < 1e-4f &&
+         t.determinant() > 0 && t.m[0][3] == 0 && t.m[1][3] == 0 && t.m[2][3] == 0;
+}
+
+// Transforms are lists of operations applied in order, first to last:
+//   {"translate": [x, y, z]}, {"rotate": {"axis": [x, y, z], "degrees": d}},
+//   {"scale": s or [sx, sy, sz]}, {"matrix": 3 or 4 rows of 4 numbers}.
+Transform parse_transform(const JsonValue& value) {
+  Transform result;
+  for (const JsonValue& op_value : value.array()) {
+    const JsonObject op = op_value.object({"translate", "rotate", "scale", "matrix"});
+    if (op.value().json().size() != 1) {
+      op_value.expected("an object with exactly one of: translate, rotate, scale, matrix");
+    }
+    Transform step;
+    if (auto t = op.optional("translate")) {
+      step = Transform::translate(t->vec3());
+    } else if (auto r = op.optional("rotate")) {
+      const JsonObject rotate = r->object({"axis", "degrees"});
+      const Vec3 axis = rotate.required("axis").direction();
+      step = Transform::rotate(axis, degrees_to_radians(rotate.required("degrees").real()));
+    } else if (auto s = op.optional("scale")) {
+      step = Transform::scale(s->rgb({0.0, std::numeric_limits<double>::infinity(), true}));
+    } else {
+      const JsonValue m = op.required("matrix");
+      if (!m.json().is_array() || (m.json().size() != 3 && m.json().size() != 4)) {
+        m.expected("3 or 4 rows of 4 numbers");
+      }
+      const std::vector<JsonValue> rows = m.array();
+      for (int i = 0; i < static_cast<int>(rows.size()); ++i) {
+        const std::vector<JsonValue> row = rows[i].array(4);
+        for (int j = 0; j < 4; ++j) {
+          const float x = row[j].real();
+          if (i < 3) {
+            step.m[i][j] = x;
+          } else if (x != (j == 3 ? 1.0f : 0.0f)) {
+            row[j].expected(j == 3 ? "1 (the last row must be [0, 0, 0, 1])"
+                                   : "0 (the last row must be [0, 0, 0, 1])");
+          }
+        }
+      }
+    }
+    result = step * result;
+  }
+  if (!(std::fabs(result.determinant()) > 0)) value.fail("the transform is not invertible");
+  return result;
+}
+
+class SceneReader {
+ public:
+  SceneReader(std::string origin, std::string base_dir)
+      : origin_(std::move(origin)), base_dir_(std::move(base_dir)) {}
+
+  LoadedScene read(const json& doc) {
+    const JsonValue root(doc, "", origin_);
+    const JsonObject top =
+        root.object({"name", "camera", "render", "materials", "media", "shapes", "lights"});
+    Scene& scene = out_.scene;
+    scene.name =
+        top.has("name") ? top.required("name").string() : fs::path(origin_).stem().string();
+    read_camera(top.required("camera"));
+    if (auto render = top.optional("render")) read_render(*render);
+    if (auto materials = top.optional("materials")) {
+      for (const JsonValue& m : materials->array()) add_material(m, true);
+    }
+    if (auto media = top.optional("media")) {
+      for (const JsonValue& m : media->array()) add_medium(m, true);
+    }
+    if (auto lights = top.optional("lights")) {
+      for (const JsonValue& l : lights->array()) read_light(l);
+    }
+    const std::vector<JsonValue> shapes = top.required("shapes").array();
+    for (const JsonValue& shape : shapes) read_shape(shape);
+    // Area lights come after the listed lights, in shape order, so a reload of the canonical
+    // document (which lists only the others) rebuilds the same light list.
+    for (size_t i = 0; i < scene.shapes.size(); ++i) {
+      if (is_black(scene.shapes[i].emission)) continue;
+      Light light;
+      light.kind = LightKind::kArea;
+      light.shape = static_cast<int>(i);
+      scene.lights.push_back(light);
+    }
+
+    canonical_["name"] = scene.name;
+    canonical_["render"] = canonical_render();
+    canonical_["materials"] = canonical_materials_;
+    canonical_["media"] = canonical_media_;
+    canonical_["shapes"] = canonical_shapes_;
+    canonical_["lights"] = canonical_lights_;
+    out_.canonical = std::move(canonical_);
+    return std::move(out_);
+  }
+
+ private:
+  // Absolute path of a mesh or image, and how the canonical document names it.
+  struct ResolvedPath {
+    std::string file;
+    std::string canonical;
+  };
+
+  ResolvedPath resolve(const std::string& name) const {
+    const fs::path p(name);
+    if (p.is_absolute()) return {p.lexically_normal().string(), p.lexically_normal().string()};
+    if (name.starts_with(kDataPrefix)) {
+      return {
+          (fs::path(SNEE_DATA_DIR) / name.substr(kDataPrefix.size())).lexically_normal().string(),
+          p.lexically_normal().string()};
+    }
+    const std::string file = fs::absolute(fs::path(base_dir_) / p).lexically_normal().string();
+    return {file, file};
+  }
+
+  void read_camera(const JsonValue& value) {
+    const JsonObject obj = value.object({"type", "position", "look_at", "up", "fov", "resolution"});
+    if (auto type = obj.optional("type")) type->choice({"pinhole"});
+    Camera& camera = out_.scene.camera;
+    camera.position = obj.required("position").vec3();
+    const JsonValue look_at = obj.required("look_at");
+    camera.look_at = look_at.vec3();
+    const Vec3 view = camera.look_at - camera.position;
+    if (!(length(view) > 0)) look_at.expected("a point different from the camera position");
+    Vec3 up_as_given = camera.up;
+    if (auto up = obj.optional("up")) {
+      up_as_given = up->direction();
+      camera.up = normalize(up_as_given);
+      if (!(length(cross(normalize(view), camera.up)) > 1e-4f)) {
+        up->expected("a direction not parallel to the viewing direction");
+      }
+    }
+    if (auto fov = obj.optional("fov")) camera.fov_y_degrees = fov->real({0.0, 180.0, true, true});
+    if (auto resolution = obj.optional("resolution")) {
+      const std::vector<JsonValue> wh = resolution->array(2);
+      camera.width = static_cast<int>(wh[0].integer(1, 1 << 16));
+      camera.height = static_cast<int>(wh[1].integer(1, 1 << 16));
+    }
+    canonical_["camera"] = {{"type", "pinhole"},
+                            {"position", to_json(camera.position)},
+                            {"look_at", to_json(camera.look_at)},
+                            {"up", to_json(up_as_given)},
+                            {"fov", camera.fov_y_degrees},
+                            {"resolution", json::array({camera.width, camera.height})}};
+  }
+
+  void read_render(const JsonValue& value) {
+    const JsonObject obj = value.object({"spp", "max_depth", "seed", "integrator"});
+    RenderSettings& render = out_.scene.render;
+    if (auto spp = obj.optional("spp")) render.spp = static_cast<int>(spp->integer(1, INT32_MAX));
+    if (auto depth = obj.optional("max_depth")) {
+      render.max_depth = static_cast<int>(depth->integer(0, INT32_MAX));
+    }
+    if (auto seed = obj.optional("seed")) {
+      render.seed = static_cast<uint32_t>(seed->integer(0, UINT32_MAX));
+    }
+    if (auto integrator = obj.optional("integrator")) render.integrator = integrator->string();
+  }
+
+  json canonical_render() const {
+    const RenderSettings& render = out_.scene.render;
+    return {{"spp", render.spp},
+            {"max_depth", render.max_depth},
+            {"seed", render.seed},
+            {"integrator", render.integrator}};
+  }
+
+  // Definitions in the top-level lists must be named; one written inline in a shape may be, and
+  // is otherwise named by the JSON path it sits at, which no sensible name collides with.
+  std::string unique_name(const JsonObject& obj, bool top_level,
+                          const std::map<std::string, std::string>& taken,
+                          const std::string& kind) const {
+    std::optional<JsonValue> name_value =
+        top_level ? std::optional(obj.required("name")) : obj.optional("name");
+    const std::string name = name_value ? name_value->string() : obj.value().path();
+    const auto it = taken.find(name);
+    if (it != taken.end()) {
+      (name_value ? *name_value : obj.value())
+          .fail("the " + kind + " name '" + name + "' is already used by " + it->second);
+    }
+    return name;
+  }
+
+  int add_material(const JsonValue& value, bool top_level) {
+    const std::string type = value.member("type").choice({"diffuse", "dielectric", "null"});
+    Material material;
+    json canonical;
+    if (type == "diffuse") {
+      const JsonObject obj = value.object({"name", "type", "albedo"});
+      material.name = unique_name(obj, top_level, material_names_, "material");
+      material.kind = MaterialKind::kDiffuse;
+      if (auto albedo = obj.optional("albedo")) material.albedo = albedo->rgb(kUnitInterval);
+      canonical = {{"albedo", to_json(material.albedo)}};
+    } else if (type == "dielectric") {
+      const JsonObject obj = value.object({"name", "type", "ior", "roughness"});
+      material.name = unique_name(obj, top_level, material_names_, "material");
+      material.kind = MaterialKind::kDielectric;
+      if (auto ior = obj.optional("ior")) material.ior = ior->real(kPositive);
+      if (auto roughness = obj.optional("roughness")) {
+        material.roughness = roughness->real(kUnitInterval);
+      }
+      canonical = {{"ior", material.ior}, {"roughness", material.roughness}};
+    } else {
+      const JsonObject obj = value.object({"name", "type"});
+      material.name = unique_name(obj, top_level, material_names_, "material");
+      material.kind = MaterialKind::kNull;
+      canonical = json::object();
+    }
+    canonical["name"] = material.name;
+    canonical["type"] = type;
+    canonical_materials_.push_back(canonical);
+    material_names_[material.name] = value.path();
+    out_.scene.materials.push_back(material);
+    return static_cast<int>(out_.scene.materials.size() - 1);
+  }
+
+  int add_medium(const JsonValue& value, bool top_level) {
+    const JsonObject obj =
+        value.object({"name", "type", "sigma_s", "sigma_a", "albedo", "mean_free_path", "g"});
+    if (auto type = obj.optional("type")) type->choice({"homogeneous"});
+    Medium medium;
+    medium.name = unique_name(obj, top_level, medium_names_, "medium");
+    const bool by_coefficients = obj.has("sigma_s") || obj.has("sigma_a");
+    const bool by_albedo = obj.has("albedo") || obj.has("mean_free_path");
+    if (by_coefficients == by_albedo) {
+      value.fail("expected either sigma_s (and optionally sigma_a) or albedo and mean_free_path");
+    }
+    if (by_coefficients) {
+      medium.sigma_s = obj.required("sigma_s").rgb(kNonNegative);
+      if (auto sigma_a = obj.optional("sigma_a")) medium.sigma_a = sigma_a->rgb(kNonNegative);
+    } else {
+      const Rgb albedo = obj.required("albedo").rgb(kUnitInterval);
+      const Rgb sigma_t = Rgb(1.0f) / obj.required("mean_free_path").rgb(kPositive);
+      medium.sigma_s = albedo * sigma_t;
+      medium.sigma_a = (Rgb(1.0f) - albedo) * sigma_t;
+    }
+    if (auto g = obj.optional("g")) medium.g = g->real({-1.0, 1.0, true, true});
+    canonical_media_.push_back({{"name", medium.name},
+                                {"type", "homogeneous"},
+                                {"sigma_s", to_json(medium.sigma_s)},
+                                {"sigma_a", to_json(medium.sigma_a)},
+                                {"g", medium.g}});
+    medium_names_[medium.name] = value.path();
+    out_.scene.media.push_back(medium);
+    return static_cast<int>(out_.scene.media.size() - 1);
+  }
+
+  // A shape's material or medium: the name of a defined one, or an inline definition.
+  int reference(const JsonValue& value, bool is_material) {
+    if (value.json().is_object()) {
+      return is_material ? add_material(value, false) : add_medium(value, false);
+    }
+    if (!value.json().is_string()) {
+      value.expected(std::string("the name of a defined ") + (is_material ? "material" : "medium") +
+                     " or an inline definition");
+    }
+    const std::string name = value.string();
+    if (is_material) {
+      for (size_t i = 0; i < out_.scene.materials.size(); ++i) {
+        if (out_.scene.materials[i].name == name) return static_cast<int>(i);
+      }
+    } else {
+      for (size_t i = 0; i < out_.scene.media.size(); ++i) {
+        if (out_.scene.media[i].name == name) return static_cast<int>(i);
+      }
+    }
+    value.fail(std::string("no ") + (is_material ? "material" : "medium") + " named '" + name +
+               "' is defined");
+  }
+
+  void read_shape(const JsonValue& value) {
+    const std::string type = value.member("type").choice({"mesh", "sphere", "quad"});
+    const std::initializer_list<std::string_view> mesh_keys = {
+        "name", "type", "transform", "material", "medium", "emission", "file", "normalize"};
+    const std::initializer_list<std::string_view> sphere_keys = {
+        "name", "type", "transform", "material", "medium", "emission", "center", "radius"};
+    const std::initializer_list<std::string_view> quad_keys = {
+        "name", "type", "transform", "material", "medium", "emission", "size"};
+    const JsonObject obj = value.object(type == "mesh"     ? mesh_keys
+                                        : type == "sphere" ? sphere_keys
+                                                           : quad_keys);
+
+    Shape shape;
+    EdgeCounts edges;
+    json canonical = {{"type", type}};
+    const std::optional<JsonValue> transform_value = obj.optional("transform");
+    const Transform transform = transform_value ? parse_transform(*transform_value) : Transform();
+    shape.source = origin_ + ": " + value.path();
+
+    if (type == "mesh") {
+      const JsonValue file_value = obj.required("file");
+      const ResolvedPath file = resolve(file_value.string());
+      try {
+        shape.mesh = load_mesh(file.file);
+      } catch (const SceneError& e) {
+        file_value.fail(e.what());
+      }
+      shape.source = file.file;
+      shape.name = fs::path(file.file).stem().string();
+      const bool normalize = obj.has("normalize") && obj.required("normalize").boolean();
+      Transform placement = transform;
+      if (normalize) placement = transform * normalizing_transform(shape.mesh);
+      apply_transform(placement, shape.mesh);
+      canonical["file"] = file.canonical;
+      canonical["normalize"] = normalize;
+    } else if (type == "sphere") {
+      if (transform_value && !is_similarity(transform)) {
+        transform_value->fail(
+            "expected a similarity transform for a sphere (rotations, uniform scales, "
+            "translations)");
+      }
+      const Vec3 center = obj.has("center") ? obj.required("center").vec3() : Vec3(0.0f);
+      const float radius = obj.has("radius") ? obj.required("radius").real(kPositive) : 1.0f;
+      shape.kind = ShapeKind::kSphere;
+      shape.center = transform.point(center);
+      shape.radius = radius * transform.uniform_scale();
+      shape.name = "sphere";
+      canonical["center"] = to_json(center);
+      canonical["radius"] = radius;
+    } else {
+      float width = 1, depth = 1;
+      if (auto size = obj.optional("size")) {
+        if (size->json().is_number()) {
+          width = depth = size->real(kPositive);
+        } else {
+          const std::vector<JsonValue> wd = size->array(2);
+          width = wd[0].real(kPositive);
+          depth = wd[1].real(kPositive);
+        }
+      }
+      // Counter-clockwise seen from +y, so the front side faces +y before the transform.
+      const float hw = 0.5f * width, hd = 0.5f * depth;
+      shape.mesh.positions = {{-hw, 0, -hd}, {-hw, 0, hd}, {hw, 0, hd}, {hw, 0, -hd}};
+      shape.mesh.indices = {0, 1, 2, 0, 2, 3};
+      apply_transform(transform, shape.mesh);
+      shape.name = "quad";
+      canonical["size"] = json::array({width, depth});
+    }
+    if (auto name = obj.optional("name")) shape.name = name->string();
+
+    if (shape.kind == ShapeKind::kMesh) {
+      // A mirroring transform turns the winding inside out; undo that so the front side stays
+      // the authored one, then make closed meshes face outward whatever the file said.
+      if (transform.determinant() < 0) flip_winding(shape.mesh);
+      edges = count_edges(shape.mesh);
+      shape.closed = edges.boundary == 0;
+      if (shape.closed && signed_volume(shape.mesh) < 0) flip_winding(shape.mesh);
+    }
+
+    shape.material = reference(obj.required("material"), true);
+    canonical["material"] = out_.scene.materials[shape.material].name;
+    if (auto medium = obj.optional("medium")) {
+      shape.interior_medium = reference(*medium, false);
+      canonical["medium"] = out_.scene.media[shape.interior_medium].name;
+      if (out_.scene.materials[shape.material].kind == MaterialKind::kDiffuse) {
+        medium->fail(
+            "an interior medium needs a dielectric or null material (light cannot "
+            "enter through a diffuse surface)");
+      }
+      if (!shape.closed) {
+        out_.warnings.push_back(origin_ + ": " + value.path() + ": the mesh '" + shape.source +
+                                "' has an interior medium but is open (" +
+                                std::to_string(edges.boundary) +
+                                " boundary edges); paths inside may leak out through the holes");
+      }
+    }
+    if (auto emission = obj.optional("emission")) shape.emission = emission->rgb(kNonNegative);
+    canonical["emission"] = to_json(shape.emission);
+    canonical["name"] = shape.name;
+    canonical["transform"] = to_json(transform);
+    canonical_shapes_.push_back(canonical);
+    out_.scene.shapes.push_back(std::move(shape));
+  }
+
+  Transform read_rotation(const JsonValue& value) {
+    const Transform rotation = parse_transform(value);
+    if (!is_rotation(rotation)) value.fail("expected a rotation (no scale, mirror or translation)");
+    return rotation;
+  }
+
+  void read_light(const JsonValue& value) {
+    const std::string type =
+        value.member("type").choice({"directional", "cone", "constant", "envmap", "sky", "point"});
+    Light light;
+    json canonical = {{"type", type}};
+    if (type == "directional") {
+      const JsonObject obj = value.object({"type", "direction", "irradiance"});
+      light.kind = LightKind::kDirectional;
+      const Vec3 direction = obj.required("direction").direction();
+      light.direction = normalize(direction);
+      if (auto e = obj.optional("irradiance")) light.irradiance = e->rgb(kNonNegative);
+      canonical["direction"] = to_json(direction);
+      canonical["irradiance"] = to_json(light.irradiance);
+    } else if (type == "cone") {
+      const JsonObject obj = value.object({"type", "direction", "half_angle_degrees", "radiance"});
+      light.kind = LightKind::kCone;
+      const Vec3 direction = obj.required("direction").direction();
+      light.direction = normalize(direction);
+      const float half_angle_degrees =
+          obj.required("half_angle_degrees").real({0.0, 180.0, true, false});
+      light.half_angle = degrees_to_radians(half_angle_degrees);
+      if (auto l = obj.optional("radiance")) light.radiance = l->rgb(kNonNegative);
+      canonical["direction"] = to_json(direction);
+      canonical["half_angle_degrees"] = half_angle_degrees;
+      canonical["radiance"] = to_json(light.radiance);
+    } else if (type == "constant") {
+      const JsonObject obj = value.object({"type", "radiance"});
+      light.kind = LightKind::kConstantEnv;
+      if (auto l = obj.optional("radiance")) light.radiance = l->rgb(kNonNegative);
+      canonical["radiance"] = to_json(light.radiance);
+    } else if (type == "envmap" || type == "sky") {
+      const JsonObject obj = type == "envmap" ? value.object({"type", "file", "scale", "rotation"})
+                                              : value.object({"type", "scale", "rotation"});
+      light.kind = LightKind::kEnvMap;
+      if (type == "envmap") {
+        const JsonValue file_value = obj.required("file");
+        const ResolvedPath file = resolve(file_value.string());
+        try {
+          out_.scene.env_images.push_back(read_env_image(file.file));
+        } catch (const SceneError& e) {
+          file_value.fail(e.what());
+        }
+        canonical["file"] = file.canonical;
+      } else {
+        out_.scene.env_images.push_back(make_soft_sky(kSkyWidth, kSkyHeight));
+      }
+      light.env_image = static_cast<int>(out_.scene.env_images.size() - 1);
+      if (auto scale = obj.optional("scale")) light.radiance = scale->rgb(kNonNegative);
+      if (auto rotation = obj.optional("rotation")) light.env_rotation = read_rotation(*rotation);
+      canonical["scale"] = to_json(light.radiance);
+      canonical["rotation"] = to_json(light.env_rotation);
+    } else {
+      const JsonObject obj = value.object({"type", "position", "intensity"});
+      light.kind = LightKind::kPoint;
+      light.position = obj.required("position").vec3();
+      if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kNonNegative);
+      canonical["position"] = to_json(light.position);
+      canonical["intensity"] = to_json(light.intensity);
+    }
+    canonical_lights_.push_back(canonical);
+    out_.scene.lights.push_back(light);
+  }
+
+  std::string origin_;
+  std::string base_dir_;
+  LoadedScene out_;
+  std::map<std::string, std::string> material_names_;  // name -> JSON path of its definition
+  std::map<std::string, std::string> medium_names_;
+  json canonical_ = json::object();
+  json canonical_materials_ = json::array();
+  json canonical_media_ = json::array();
+  json canonical_shapes_ = json::array();
+  json canonical_lights_ = json::array();
+};
+
+}  // namespace
+
+LoadedScene load_scene_json(const json& doc, const std::string& origin,
+                            const std::string& base_dir) {
+  return SceneReader(origin, base_dir).read(doc);
+}
+
+LoadedScene load_scene_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw SceneError(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << file.rdbuf();
+  json doc;
+  try {
+    doc = json::parse(text.str(), nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column
+    // C: ..."; the bracketed id means nothing to a user.
+    std::string message = e.what();
+    const size_t id_end = message.find("] ");
+    if (id_end != std::string::npos) message = message.substr(id_end + 2);
+    throw SceneError(path + ": malformed JSON: " + message);
+  }
+  return load_scene_json(doc, path, fs::path(path).parent_path().string());
+}
+
+LoadedScene load_scene(const std::string& spec) {
+  constexpr std::string_view kBuiltinPrefix = "builtin:";
+  if (spec.starts_with(kBuiltinPrefix))
+    return load_builtin_scene(spec.substr(kBuiltinPrefix.size()));
+  return load_scene_file(spec);
+}
+
+}  // namespace snee

@@ -1,0 +1,186 @@
+#include "scheduler/render.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <stdexcept>
+
+#include "kernels/lights/light_table.h"
+#include "scene/embree_scene.h"
+#include "scheduler/work_unit.h"
+
+namespace snee {
+
+const char* ray_kind_name(RayKind k) {
+  static const char* names[] = {"camera", "extension", "shadow", "probe"};
+  return names[static_cast<int>(k)];
+}
+
+const char* stage_name(Stage s) {
+  static const char* names[] = {"generate",   "extend",      "medium_event",   "shade_surface", "shade_escaped",
+                                "snee_probe", "subdivision", "shadow_connect", "retire"};
+  return names[static_cast<int>(s)];
+}
+
+uint64_t RenderStats::total_rays() const {
+  uint64_t total = 0;
+  for (const uint64_t r : rays) total += r;
+  return total;
+}
+
+namespace {
+
+void validate(const Scene& scene, const RenderOptions& o) {
+  if (o.spp < 1) throw std::invalid_argument("spp must be at least 1");
+  if (o.threads < 0) throw std::invalid_argument("threads must be 0 (all) or positive");
+  if (o.max_depth < 1) throw std::invalid_argument("max depth must be at least 1");
+  if (o.queue_capacity < 16) throw std::invalid_argument("queue capacity must be at least 16");
+  if (o.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
+  if (o.samples_per_pass < 1) throw std::invalid_argument("samples per pass must be at least 1");
+  if (scene.camera.width < 1 || scene.camera.height < 1) throw std::invalid_argument("empty image");
+}
+
+// Embree asks for flush-to-zero and denormals-are-zero in every thread that traces rays.
+void set_flush_to_zero() {
+  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const RenderOptions& options, const ProgressCallback& progress) {
+  validate(scene, options);
+  const Integrator integrator = parse_integrator(options.integrator);
+  const auto start = std::chrono::steady_clock::now();
+  set_flush_to_zero();
+  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  tbb::task_arena arena(threads);
+
+  const EmbreeScene embree(scene);
+  const LightTable lights(scene);
+  const KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth, SneeOptions{});
+
+  const int width = scene.camera.width, height = scene.camera.height, ts = options.tile_size;
+  std::vector<WorkUnit> tiles;
+  for (int y = 0; y < height; y += ts) {
+    for (int x = 0; x < width; x += ts) tiles.push_back({x, y, std::min(x + ts, width), std::min(y + ts, height), 0, 0});
+  }
+  // A pass renders a block of sample indices for every pixel; its units are tiles times
+  // sample chunks. How the block is cut into units never changes the image: every sample is a
+  // pure function of its pixel and index, and the film adds samples in index order.
+  const uint32_t spp = static_cast<uint32_t>(options.spp);
+  const uint32_t chunk = static_cast<uint32_t>(options.samples_per_pass);
+  const size_t min_units = 8 * static_cast<size_t>(threads);
+  const uint32_t chunks_per_pass = static_cast<uint32_t>(
+      std::clamp<size_t>((min_units + tiles.size() - 1) / tiles.size(), 1, (spp + chunk - 1) / chunk));
+
+  const size_t pixel_count = static_cast<size_t>(width) * height;
+  std::vector<double> sum(pixel_count * 3, 0.0), sum_sq(pixel_count * 3, 0.0);
+  std::vector<Rgb> pass_samples(pixel_count * std::min<size_t>(spp, size_t{chunk} * chunks_per_pass));
+
+  tbb::enumerable_thread_specific<UnitWorkspace> workspaces(static_cast<size_t>(options.queue_capacity));
+  std::atomic<int64_t> samples_done{0};
+  std::atomic<uint64_t> rays_done{0};
+  const int64_t samples_total = static_cast<int64_t>(pixel_count) * spp;
+
+  for (uint32_t pass_begin = 0; pass_begin < spp; pass_begin += chunk * chunks_per_pass) {
+    const uint32_t pass_end = std::min(spp, pass_begin + chunk * chunks_per_pass);
+    std::vector<WorkUnit> units;
+    std::vector<size_t> unit_offset;
+    size_t offset = 0;
+    for (uint32_t s = pass_begin; s < pass_end; s += chunk) {
+      for (WorkUnit u : tiles) {
+        u.sample_begin = s;
+        u.sample_end = std::min(pass_end, s + chunk);
+        units.push_back(u);
+        unit_offset.push_back(offset);
+        offset += u.sample_count();
+      }
+    }
+    arena.execute([&] {
+      tbb::parallel_for(size_t{0}, units.size(), [&](size_t i) {
+        set_flush_to_zero();
+        UnitWorkspace& ws = workspaces.local();
+        const uint64_t rays_before = ws.counters.rays[0] + ws.counters.rays[1] + ws.counters.rays[2] + ws.counters.rays[3];
+        run_work_unit(ctx, units[i], ws, pass_samples.data() + unit_offset[i]);
+        const uint64_t rays_after = ws.counters.rays[0] + ws.counters.rays[1] + ws.counters.rays[2] + ws.counters.rays[3];
+        rays_done += rays_after - rays_before;
+        const int64_t done = samples_done += static_cast<int64_t>(units[i].sample_count());
+        if (progress) {
+          Progress p;
+          p.samples_done = done;
+          p.samples_total = samples_total;
+          p.fraction = static_cast<double>(done) / static_cast<double>(samples_total);
+          p.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          p.mrays_per_second = p.elapsed_seconds > 0 ? static_cast<double>(rays_done.load()) / p.elapsed_seconds * 1e-6 : 0;
+          progress(p);
+        }
+      });
+      // Fold the pass into the film: tiles in parallel, and within a tile its sample chunks in
+      // order, so every pixel adds its samples in index order whatever the thread count.
+      tbb::parallel_for(size_t{0}, tiles.size(), [&](size_t t) {
+        for (size_t i = t; i < units.size(); i += tiles.size()) {
+          const WorkUnit& u = units[i];
+          const Rgb* samples = pass_samples.data() + unit_offset[i];
+          const int tile_w = u.x1 - u.x0;
+          for (uint32_t s = 0; s < u.sample_end - u.sample_begin; ++s) {
+            for (int y = u.y0; y < u.y1; ++y) {
+              for (int x = u.x0; x < u.x1; ++x) {
+                const Rgb v = samples[s * static_cast<size_t>(u.pixel_count()) + static_cast<size_t>((y - u.y0) * tile_w + (x - u.x0))];
+                const size_t pixel = static_cast<size_t>(y) * width + x;
+                for (int c = 0; c < 3; ++c) {
+                  sum[3 * pixel + c] += v[c];
+                  sum_sq[3 * pixel + c] += static_cast<double>(v[c]) * v[c];
+                }
+              }
+            }
+          }
+        }
+      });
+    });
+  }
+
+  RenderResult result;
+  Film& film = result.film;
+  film.width = width;
+  film.height = height;
+  film.mean.resize(pixel_count);
+  film.variance_of_mean.resize(pixel_count);
+  const double n = spp;
+  for (size_t p = 0; p < pixel_count; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const double mean = sum[3 * p + c] / n;
+      const double var = spp > 1 ? std::max(0.0, (sum_sq[3 * p + c] - n * mean * mean) / (n - 1)) : 0.0;
+      film.mean[p][c] = static_cast<float>(mean);
+      film.variance_of_mean[p][c] = static_cast<float>(var / n);
+    }
+  }
+  RenderStats& stats = result.stats;
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.threads = threads;
+  stats.path_state_bytes_per_slot = PathState::bytes_per_slot();
+  KernelCounters counters;
+  for (const UnitWorkspace& ws : workspaces) {
+    counters.add(ws.counters);
+    for (int i = 0; i < static_cast<int>(Stage::kCount); ++i) stats.stage_seconds[i] += ws.stage_seconds[i];
+  }
+  for (int i = 0; i < static_cast<int>(RayKind::kCount); ++i) stats.rays[i] = counters.rays[i];
+  stats.paths = counters.paths;
+  stats.nonfinite_samples = counters.nonfinite_samples;
+  film.meta.spp = options.spp;
+  film.meta.integrator = integrator_name(integrator);
+  film.meta.seed = options.seed;
+  film.meta.render_seconds = stats.seconds;
+  film.meta.scene = scene.name;
+  return result;
+}
+
+}  // namespace snee

@@ -1,0 +1,72 @@
+// The entry point of rendering: runs an integrator over a scene with a schedule, a thread
+// count and a sample budget, and returns the film and the statistics.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "scene/film.h"
+#include "scene/scene.h"
+
+namespace snee {
+
+enum class RayKind : int { kCamera, kExtension, kShadow, kProbe, kCount };
+enum class Stage : int {
+  kGenerate,
+  kExtend,
+  kMediumEvent,
+  kShadeSurface,
+  kShadeEscaped,
+  kSneeProbe,
+  kSubdivision,
+  kShadowConnect,
+  kRetire,
+  kCount
+};
+const char* ray_kind_name(RayKind k);
+const char* stage_name(Stage s);
+
+struct RenderOptions {
+  int spp = 64;
+  uint32_t seed = 0;
+  int threads = 0;            // 0 = all hardware threads
+  std::string integrator = "pt";
+  int max_depth = 1024;
+  int queue_capacity = 4096;  // path slots per work unit (batch size of every stage)
+  int tile_size = 16;         // work-unit tile edge in pixels (fixed by image, never by threads)
+  int samples_per_pass = 8;   // samples each work unit takes per pixel in one pass
+};
+
+struct Progress {
+  double fraction = 0;        // 0..1
+  int64_t samples_done = 0;   // pixel samples finished
+  int64_t samples_total = 0;
+  double elapsed_seconds = 0;
+  double mrays_per_second = 0;
+};
+using ProgressCallback = std::function<void(const Progress&)>;
+
+struct RenderStats {
+  double seconds = 0;
+  std::array<uint64_t, static_cast<int>(RayKind::kCount)> rays{};
+  std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};  // summed over threads
+  uint64_t paths = 0;
+  uint64_t nonfinite_samples = 0;  // dropped (counted, never averaged in)
+  size_t path_state_bytes_per_slot = 0;
+  int threads = 0;
+  uint64_t total_rays() const;
+  double mrays_per_second() const { return seconds > 0 ? total_rays() / seconds * 1e-6 : 0; }
+};
+
+struct RenderResult {
+  Film film;
+  RenderStats stats;
+};
+
+// Throws std::invalid_argument for an unknown integrator or invalid options.
+RenderResult render(const Scene& scene, const RenderOptions& options,
+                    const ProgressCallback& progress = {});
+
+}  // namespace snee

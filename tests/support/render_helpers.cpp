@@ -1,0 +1,95 @@
+#include "tests/support/render_helpers.h"
+
+#include <cmath>
+
+namespace snee::test {
+
+Scene sphere_scene(const Material& material, const Medium& medium, int resolution) {
+  Scene scene;
+  scene.name = "test-sphere";
+  scene.camera.position = {0, 0, 4};
+  scene.camera.look_at = {0, 0, 0};
+  scene.camera.up = {0, 1, 0};
+  scene.camera.fov_y_degrees = 35;
+  scene.camera.width = scene.camera.height = resolution;
+  scene.materials.push_back(material);
+  scene.media.push_back(medium);
+  Shape sphere;
+  sphere.name = "sphere";
+  sphere.kind = ShapeKind::kSphere;
+  sphere.center = {0, 0, 0};
+  sphere.radius = 1;
+  sphere.material = 0;
+  sphere.interior_medium = 0;
+  scene.shapes.push_back(sphere);
+  return scene;
+}
+
+RegionStats region_mean(const Film& film, const std::vector<bool>& mask) {
+  double sum = 0, var = 0;
+  int n = 0;
+  for (size_t i = 0; i < film.mean.size(); ++i) {
+    if (!mask[i]) continue;
+    sum += average(film.mean[i]);
+    // Channels of one pixel are correlated; the variance of their average is bounded by the
+    // average of their standard deviations squared, which is what is used (conservative).
+    const Rgb v = film.variance_of_mean[i];
+    const double sd = (std::sqrt(v.x) + std::sqrt(v.y) + std::sqrt(v.z)) / 3.0;
+    var += sd * sd;
+    ++n;
+  }
+  RegionStats r;
+  r.pixels = n;
+  if (n == 0) return r;
+  r.mean = sum / n;
+  r.standard_error = std::sqrt(var) / n;
+  return r;
+}
+
+std::vector<bool> sphere_mask(const Scene& scene) {
+  const Camera& c = scene.camera;
+  const Vec3 forward = normalize(c.look_at - c.position);
+  const Vec3 right = normalize(cross(forward, c.up));
+  const Vec3 up = cross(right, forward);
+  const float tan_half = std::tan(0.5f * c.fov_y_degrees * kPi / 180.0f);
+  const float aspect = static_cast<float>(c.width) / static_cast<float>(c.height);
+  auto hits = [&](float px, float py) {
+    const float x = (2.0f * px / c.width - 1.0f) * tan_half * aspect;
+    const float y = (1.0f - 2.0f * py / c.height) * tan_half;
+    const Vec3 d = normalize(forward + right * x + up * y);
+    const Vec3 o = c.position;
+    const float b = dot(o, d);
+    return b * b - (dot(o, o) - 1.0f) > 0;
+  };
+  std::vector<bool> mask(static_cast<size_t>(c.width) * c.height);
+  for (int y = 0; y < c.height; ++y) {
+    for (int x = 0; x < c.width; ++x) {
+      mask[static_cast<size_t>(y) * c.width + x] =
+          hits(x, y) && hits(x + 1.0f, y) && hits(x, y + 1.0f) && hits(x + 1.0f, y + 1.0f);
+    }
+  }
+  return mask;
+}
+
+std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block, int min_pixels) {
+  std::vector<std::vector<bool>> out;
+  for (int by = 0; by < film.height; by += block) {
+    for (int bx = 0; bx < film.width; bx += block) {
+      std::vector<bool> m(mask.size(), false);
+      int count = 0;
+      for (int y = by; y < std::min(by + block, film.height); ++y) {
+        for (int x = bx; x < std::min(bx + block, film.width); ++x) {
+          const size_t i = static_cast<size_t>(y) * film.width + x;
+          if (mask[i]) {
+            m[i] = true;
+            ++count;
+          }
+        }
+      }
+      if (count >= min_pixels) out.push_back(std::move(m));
+    }
+  }
+  return out;
+}
+
+}  // namespace snee::test

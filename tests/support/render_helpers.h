@@ -1,0 +1,32 @@
+// Helpers for tests that render whole images: small scenes built in code, and statistics over
+// image regions using the film's per-pixel variance of the mean.
+#pragma once
+
+#include <vector>
+
+#include "scene/film.h"
+#include "scene/scene.h"
+
+namespace snee::test {
+
+// A unit sphere at the origin filled with `medium`, bounded by `material`, seen by a camera
+// that frames it, with no lights (add them).
+Scene sphere_scene(const Material& material, const Medium& medium, int resolution);
+
+struct RegionStats {
+  double mean = 0;
+  double standard_error = 0;
+  int pixels = 0;
+};
+
+// Mean of channel-averaged pixel values over the pixels where mask is true, with the standard
+// error of that mean from the per-pixel variances (pixels are independent).
+RegionStats region_mean(const Film& film, const std::vector<bool>& mask);
+// The pixels whose camera ray hits the unit sphere at the origin (exactly, at the pixel centre
+// footprint: all four corners inside the silhouette).
+std::vector<bool> sphere_mask(const Scene& scene);
+// Square blocks of `block` pixels intersected with a mask (blocks with fewer than min_pixels
+// masked pixels are dropped).
+std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block, int min_pixels);
+
+}  // namespace snee::test

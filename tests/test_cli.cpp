@@ -1,0 +1,179 @@
+// The snee binary as a user meets it: help, usage errors, scene errors and a tiny render whose
+// outputs are read back.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "scene/film.h"
+
+namespace snee {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_file(const fs::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("snee_cli_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `snee ARGS` in the temporary directory, so default outputs land there too.
+  Outcome snee(const std::string& args) const {
+    const fs::path log = dir_ / "output.txt";
+    const std::string command = "cd '" + dir_.string() + "' && '" SNEE_BINARY "' " + args + " > '" +
+                                log.string() + "' 2>&1 < /dev/null";
+    const int status = std::system(command.c_str());
+    Outcome result;
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.output = read_file(log);
+    return result;
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST_F(CliTest, RenderHelpListsEveryOption) {
+  const Outcome run = snee("render --help");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  for (const char* option : {"SCENE", "builtin:", "--spp", "--threads", "--seed", "--integrator",
+                             "-o", "--output", "--stats", "--resolution", "--max-depth",
+                             "--queue-capacity", "--tile-size", "--samples-per-pass", "--quiet"})
+    EXPECT_TRUE(contains(run.output, option)) << option << " missing from:\n" << run.output;
+}
+
+TEST_F(CliTest, TopLevelHelpAndVersion) {
+  const Outcome help = snee("--help");
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  EXPECT_TRUE(contains(help.output, "render")) << help.output;
+  EXPECT_TRUE(contains(help.output, "scenes")) << help.output;
+  EXPECT_EQ(snee("scenes --help").exit_code, 0);
+
+  const Outcome version = snee("--version");
+  EXPECT_EQ(version.exit_code, 0) << version.output;
+  EXPECT_TRUE(contains(version.output, SNEE_VERSION)) << version.output;
+}
+
+TEST_F(CliTest, NoSubcommandIsAnError) {
+  const Outcome run = snee("");
+  EXPECT_NE(run.exit_code, 0) << run.output;
+}
+
+TEST_F(CliTest, UnknownOptionIsAnError) {
+  const Outcome run = snee("render --bogus-option 3");
+  EXPECT_NE(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "--bogus-option")) << run.output;
+}
+
+TEST_F(CliTest, BadValuesAreErrors) {
+  for (const char* args :
+       {"render --resolution 0x5", "render --resolution 16", "render --resolution 16x-2",
+        "render --spp 0", "render --spp many", "render --threads -1", "render --integrator bdpt",
+        "render -o image.png", "render --tile-size 0"}) {
+    const Outcome run = snee(args);
+    EXPECT_NE(run.exit_code, 0) << args << "\n" << run.output;
+    EXPECT_TRUE(contains(run.output, "error")) << args << "\n" << run.output;
+  }
+}
+
+TEST_F(CliTest, MissingSceneFileNamesThePath) {
+  const std::string scene = path("no_such_scene.json");
+  const Outcome run = snee("render '" + scene + "' --quiet");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, scene)) << run.output;
+}
+
+TEST_F(CliTest, MalformedJsonNamesFileAndLine) {
+  const std::string scene = path("broken.json");
+  write_file(scene, "{\n  \"camera\": {\n    \"fov\": 40,,\n  }\n}\n");
+  const Outcome run = snee("render '" + scene + "' --quiet");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, scene)) << run.output;
+  EXPECT_TRUE(contains(run.output, "line 3")) << run.output;
+}
+
+TEST_F(CliTest, UnknownKeyNamesTheJsonPath) {
+  const std::string scene = path("typo.json");
+  write_file(scene, R"({"camera": {"fov": 40, "bogus_key": 1}})");
+  const Outcome run = snee("render '" + scene + "' --quiet");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_TRUE(contains(run.output, "camera.bogus_key")) << run.output;
+}
+
+TEST_F(CliTest, ScenesListsTheDefaultScene) {
+  const Outcome run = snee("scenes");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "default")) << run.output;
+  EXPECT_TRUE(contains(run.output, "furnace-sphere")) << run.output;
+}
+
+TEST_F(CliTest, TinyRenderWritesExrPngAndStats) {
+  const Outcome run = snee(
+      "render builtin:furnace-sphere --resolution 16x16 --spp 2 -o out/a.exr --stats s.json "
+      "--quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "wrote out/a.exr")) << run.output;
+  EXPECT_TRUE(contains(run.output, "wrote out/a.png")) << run.output;
+
+  const Film film = read_exr(path("out/a.exr"));
+  EXPECT_EQ(film.width, 16);
+  EXPECT_EQ(film.height, 16);
+  EXPECT_EQ(film.variance_of_mean.size(), 256u);
+  EXPECT_EQ(film.meta.spp, 2);
+  EXPECT_TRUE(fs::is_regular_file(path("out/a.png")));
+
+  const auto stats = nlohmann::json::parse(read_file(path("s.json")));
+  for (const char* key :
+       {"version", "scene", "integrator", "spp", "seed", "threads", "resolution", "seconds",
+        "stage_seconds", "rays", "paths", "mrays_per_second", "path_state_bytes_per_slot"})
+    EXPECT_TRUE(stats.contains(key)) << key;
+  EXPECT_EQ(stats["spp"], 2);
+  EXPECT_EQ(stats["resolution"]["width"], 16);
+  EXPECT_EQ(stats["resolution"]["height"], 16);
+  for (const char* kind : {"camera", "extension", "shadow", "probe", "total"})
+    EXPECT_TRUE(stats["rays"].contains(kind)) << kind;
+  EXPECT_GE(stats["rays"]["camera"].get<uint64_t>(), 16u * 16u * 2u);
+}
+
+TEST_F(CliTest, DefaultOutputIsNamedAfterTheScene) {
+  const Outcome run = snee("render builtin:furnace-sphere --resolution 8x4 --spp 1 --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(fs::is_regular_file(path("out/furnace-sphere.exr"))) << run.output;
+  EXPECT_TRUE(fs::is_regular_file(path("out/furnace-sphere.png"))) << run.output;
+  EXPECT_EQ(read_exr(path("out/furnace-sphere.exr")).width, 8);
+}
+
+}  // namespace
+}  // namespace snee

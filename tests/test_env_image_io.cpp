@@ -1,0 +1,118 @@
+// Environment images: channel handling and colour decoding for each kind of file OIIO writes.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "scene/env_image_io.h"
+#include "scene/scene_error.h"
+
+namespace snee {
+namespace {
+
+namespace fs = std::filesystem;
+
+class EnvImageIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("snee_test_env_image_io_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  template <typename T>
+  std::string write_image(const std::string& name, int width, int height, int channels,
+                          OIIO::TypeDesc format, const std::vector<T>& pixels) {
+    const std::string path = (dir_ / name).string();
+    auto out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out) << OIIO::geterror();
+    const OIIO::ImageSpec spec(width, height, channels, format);
+    EXPECT_TRUE(out->open(path, spec));
+    EXPECT_TRUE(out->write_image(OIIO::BaseTypeFromC<T>::value, pixels.data()));
+    out->close();
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+std::string error_of(const std::string& path) {
+  try {
+    read_env_image(path);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no SceneError for " << path;
+  return "";
+}
+
+TEST_F(EnvImageIoTest, FloatExrIsLinearAndKeepsFirstThreeChannels) {
+  const std::vector<float> rgba = {0.5f, 2.0f, 100.0f, 0.1f, 0.0f, 0.25f, 7.0f, 1.0f,
+                                   1.0f, 3.0f, 0.125f, 0.3f, 4.0f, 5.0f,  6.0f, 0.0f};
+  const EnvImage image =
+      read_env_image(write_image("rgba.exr", 2, 2, 4, OIIO::TypeDesc::FLOAT, rgba));
+  ASSERT_EQ(image.width, 2);
+  ASSERT_EQ(image.height, 2);
+  ASSERT_EQ(image.pixels.size(), 4u);
+  EXPECT_EQ(image.pixels[0], Rgb(0.5f, 2.0f, 100.0f));
+  EXPECT_EQ(image.pixels[1], Rgb(0.0f, 0.25f, 7.0f));
+  EXPECT_EQ(image.pixels[3], Rgb(4.0f, 5.0f, 6.0f));  // bottom right: row-major, top row first
+}
+
+TEST_F(EnvImageIoTest, OneChannelBecomesGrey) {
+  const std::vector<float> grey = {0.25f, 8.0f, 1.5f};
+  const EnvImage image =
+      read_env_image(write_image("grey.exr", 3, 1, 1, OIIO::TypeDesc::FLOAT, grey));
+  EXPECT_EQ(image.pixels[1], Rgb(8.0f));
+  EXPECT_EQ(image.pixels[2], Rgb(1.5f));
+}
+
+TEST_F(EnvImageIoTest, EightBitPngIsSrgbDecoded) {
+  const std::vector<unsigned char> rgb = {0, 128, 255, 255, 255, 255};
+  const EnvImage image =
+      read_env_image(write_image("srgb.png", 2, 1, 3, OIIO::TypeDesc::UINT8, rgb));
+  EXPECT_EQ(image.pixels[0].x, 0.0f);
+  // sRGB 128/255 = 0.50196 decodes to ((0.50196 + 0.055) / 1.055)^2.4 = 0.21586.
+  EXPECT_NEAR(image.pixels[0].y, 0.215861f, 1e-5f);
+  EXPECT_NEAR(image.pixels[0].z, 1.0f, 1e-6f);
+  EXPECT_NEAR(image.pixels[1].x, 1.0f, 1e-6f);
+}
+
+TEST_F(EnvImageIoTest, RadianceHdrIsLinear) {
+  const std::vector<float> rgb = {1.0f, 0.5f, 4.0f};
+  const EnvImage image =
+      read_env_image(write_image("sky.hdr", 1, 1, 3, OIIO::TypeDesc::FLOAT, rgb));
+  // RGBE keeps 8 mantissa bits per channel relative to the largest.
+  EXPECT_NEAR(image.pixels[0].x, 1.0f, 0.02f);
+  EXPECT_NEAR(image.pixels[0].y, 0.5f, 0.02f);
+  EXPECT_NEAR(image.pixels[0].z, 4.0f, 0.02f);
+}
+
+TEST_F(EnvImageIoTest, ErrorsNameTheFile) {
+  const std::string missing = (dir_ / "missing.exr").string();
+  const std::string message = error_of(missing);
+  EXPECT_NE(message.find(missing), std::string::npos) << message;
+  EXPECT_NE(message.find("no such file"), std::string::npos) << message;
+
+  const std::string garbage = (dir_ / "garbage.exr").string();
+  std::ofstream(garbage) << "this is not an image";
+  EXPECT_NE(error_of(garbage).find(garbage), std::string::npos);
+
+  const std::vector<float> nan = {1.0f, std::numeric_limits<float>::quiet_NaN(), 1.0f};
+  const std::string bad = write_image("nan.exr", 1, 1, 3, OIIO::TypeDesc::FLOAT, nan);
+  const std::string nan_message = error_of(bad);
+  EXPECT_NE(nan_message.find("nan.exr"), std::string::npos) << nan_message;
+  EXPECT_NE(nan_message.find("pixel (0, 0)"), std::string::npos) << nan_message;
+}
+
+}  // namespace
+}  // namespace snee

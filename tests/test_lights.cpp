@@ -1,0 +1,457 @@
+// Light sampling: every sample's pdf agrees with the pdf used for MIS (escaped_pdf, area_pdf),
+// sampled directions follow that pdf (chi-square), and irradiance estimated from the samples
+// matches closed forms or an independent estimator.
+#include <gtest/gtest.h>
+
+#include <cfloat>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "kernels/lights/light_table.h"
+#include "tests/support/chi2.h"
+#include "tests/support/statistics.h"
+
+namespace snee {
+namespace {
+
+using test::MeanEstimator;
+using test::TestRng;
+
+constexpr double kMinPValue = 1e-4;
+constexpr double kMaxZ = 4;
+constexpr int kSamples = 1'000'000;
+// Recomputing a pdf from the sampled point takes a handful of float operations.
+constexpr float kPdfRelativeTolerance = 64 * FLT_EPSILON;
+
+Light directional_light(Vec3 direction, Rgb irradiance) {
+  Light l;
+  l.kind = LightKind::kDirectional;
+  l.direction = normalize(direction);
+  l.irradiance = irradiance;
+  return l;
+}
+
+Light cone_light(Vec3 direction, float half_angle, Rgb radiance) {
+  Light l;
+  l.kind = LightKind::kCone;
+  l.direction = normalize(direction);
+  l.half_angle = half_angle;
+  l.radiance = radiance;
+  return l;
+}
+
+Light constant_env(Rgb radiance) {
+  Light l;
+  l.kind = LightKind::kConstantEnv;
+  l.radiance = radiance;
+  return l;
+}
+
+Light point_light(Vec3 position, Rgb intensity) {
+  Light l;
+  l.kind = LightKind::kPoint;
+  l.position = position;
+  l.intensity = intensity;
+  return l;
+}
+
+// Adds shape as an area light and returns its shape index.
+int add_area_light(Scene& scene, Shape shape) {
+  scene.shapes.push_back(std::move(shape));
+  Light l;
+  l.kind = LightKind::kArea;
+  l.shape = static_cast<int>(scene.shapes.size() - 1);
+  scene.lights.push_back(l);
+  return l.shape;
+}
+
+// Unit square in the plane z = height, centred on the z axis, emitting downward (-z).
+Shape square_emitter(float height, Rgb emission) {
+  Shape s;
+  s.kind = ShapeKind::kMesh;
+  s.mesh.positions = {
+      {-0.5f, -0.5f, height}, {0.5f, -0.5f, height}, {0.5f, 0.5f, height}, {-0.5f, 0.5f, height}};
+  s.mesh.indices = {0, 2, 1, 0, 3, 2};  // clockwise seen from above: the normal is -z
+  s.emission = emission;
+  s.closed = false;
+  return s;
+}
+
+Shape sphere_emitter(Vec3 center, float radius, Rgb emission) {
+  Shape s;
+  s.kind = ShapeKind::kSphere;
+  s.center = center;
+  s.radius = radius;
+  s.emission = emission;
+  return s;
+}
+
+// Irradiance (luminance) on a plane through p with normal n, from light samples.
+MeanEstimator estimate_irradiance(const LightTable& lights, Vec3 p, Vec3 n, uint64_t seed,
+                                  int samples = kSamples) {
+  TestRng rng(seed);
+  MeanEstimator e;
+  for (int k = 0; k < samples; ++k) {
+    const float u_select = rng.uniform();
+    const LightSample s = lights.sample(p, u_select, rng.uniform2());
+    const float cos_theta = dot(n, s.wi);
+    e.add(s.valid && cos_theta > 0 ? luminance(s.radiance) * cos_theta / s.pdf : 0.0);
+  }
+  return e;
+}
+
+void expect_agrees(const MeanEstimator& e, double expected, const char* what) {
+  EXPECT_LT(test::z_score(e.mean(), e.standard_error(), expected, 0), kMaxZ)
+      << what << ": estimate " << e.mean() << " +- " << e.standard_error() << ", expected "
+      << expected;
+}
+
+// Form factor from a point to a parallel a x b rectangle whose corner lies straight above it at
+// height c (a standard radiative-transfer table entry, e.g. Howell's catalogue, case B-3).
+double corner_form_factor(double a, double b, double c) {
+  const double x = a / c, y = b / c;
+  const double sx = std::sqrt(1 + x * x), sy = std::sqrt(1 + y * y);
+  return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2 * M_PI);
+}
+
+// The pdf of every sample agrees with the pdf MIS uses for the same direction or point.
+void expect_round_trip(const Scene& scene, const LightTable& lights, Vec3 p, uint64_t seed) {
+  TestRng rng(seed);
+  const float selection = 1.0f / static_cast<float>(scene.lights.size());
+  int valid = 0;
+  for (int k = 0; k < 100000; ++k) {
+    const float u_select = rng.uniform();
+    const LightSample s = lights.sample(p, u_select, rng.uniform2());
+    if (!s.valid) continue;
+    ++valid;
+    ASSERT_NEAR(length(s.wi), 1.0f, 4 * FLT_EPSILON);
+    if (s.delta) {
+      ASSERT_EQ(s.pdf, selection);
+    } else if (std::isinf(s.distance)) {
+      ASSERT_EQ(s.pdf, lights.escaped_pdf(s.wi));
+      ASSERT_EQ(s.radiance, lights.escaped_radiance(s.wi));
+    } else {
+      // Find the emitter the point lies on.
+      const Vec3 hit = p + s.wi * s.distance;
+      int shape = -1;
+      Vec3 n;
+      for (size_t i = 0; i < scene.shapes.size() && shape < 0; ++i) {
+        const Shape& sh = scene.shapes[i];
+        if (sh.kind == ShapeKind::kSphere) {
+          if (std::fabs(length(hit - sh.center) - sh.radius) < 1e-4f * sh.radius) {
+            shape = static_cast<int>(i);
+            n = normalize(hit - sh.center);
+          }
+        } else if (std::fabs(hit.z - sh.mesh.positions[0].z) < 1e-5f) {
+          shape = static_cast<int>(i);
+          n = Vec3(0, 0, -1);
+        }
+      }
+      ASSERT_GE(shape, 0) << "sampled point on no emitter";
+      ASSERT_NEAR(s.pdf, lights.area_pdf(shape, p, hit, n), kPdfRelativeTolerance * s.pdf);
+      ASSERT_EQ(s.radiance, lights.area_radiance(shape, n, s.wi));
+    }
+  }
+  EXPECT_GT(valid, 0);
+}
+
+// ---- environment map fixture ----
+
+constexpr int kEnvWidth = 32, kEnvHeight = 16;
+
+Vec3 map_direction(float u, float v) {
+  const float theta = v * kPi, phi = 2 * kPi * (u - 0.5f);
+  return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+}
+
+// A coloured gradient plus a bright blob; every pixel well above the sampling floor.
+EnvImage procedural_env() {
+  EnvImage image;
+  image.width = kEnvWidth;
+  image.height = kEnvHeight;
+  const Vec3 blob = map_direction(0.7f, 0.3f);
+  for (int y = 0; y < kEnvHeight; ++y) {
+    for (int x = 0; x < kEnvWidth; ++x) {
+      const float u = (x + 0.5f) / kEnvWidth, v = (y + 0.5f) / kEnvHeight;
+      const float c = dot(map_direction(u, v), blob);
+      const float b = 40.0f * std::exp(-(1 - c) / 0.02f);
+      image.pixels.push_back(Rgb(0.2f + 0.5f * u, 0.3f + 0.4f * v, 0.6f - 0.3f * v) + Rgb(b));
+    }
+  }
+  return image;
+}
+
+struct EnvScene {
+  Scene scene;
+  Transform rotation = Transform::rotate(Vec3(1, 2, 0.5f), 0.7f);
+  Rgb scale{1.5f, 1.0f, 0.5f};
+  EnvScene() {
+    scene.env_images.push_back(procedural_env());
+    Light l;
+    l.kind = LightKind::kEnvMap;
+    l.env_image = 0;
+    l.env_rotation = rotation;
+    l.radiance = scale;
+    scene.lights.push_back(l);
+  }
+  Vec3 to_map(Vec3 w) const {
+    // Inverse of a rotation: its transpose.
+    const auto& m = rotation.m;
+    return {m[0][0] * w.x + m[1][0] * w.y + m[2][0] * w.z,
+            m[0][1] * w.x + m[1][1] * w.y + m[2][1] * w.z,
+            m[0][2] * w.x + m[1][2] * w.y + m[2][2] * w.z};
+  }
+  const Rgb& pixel(int x, int y) const { return scene.env_images[0].pixels[y * kEnvWidth + x]; }
+};
+
+// ---- tests ----
+
+TEST(Lights, DirectionalIsDeltaAndNotSeenByEscapedRays) {
+  Scene scene;
+  scene.lights.push_back(directional_light(Vec3(1, 2, 3), Rgb(2.0f)));
+  const LightTable lights(scene);
+  EXPECT_TRUE(lights.has_delta_lights());
+  const LightSample s = lights.sample(Vec3(0.0f), 0.3f, {0.2f, 0.7f});
+  ASSERT_TRUE(s.valid);
+  EXPECT_TRUE(s.delta);
+  EXPECT_EQ(s.pdf, 1.0f);
+  EXPECT_TRUE(std::isinf(s.distance));
+  EXPECT_EQ(s.radiance, Rgb(2.0f));
+  EXPECT_EQ(s.wi, normalize(Vec3(1, 2, 3)));
+  EXPECT_EQ(lights.escaped_radiance(s.wi), Rgb(0.0f));
+  EXPECT_EQ(lights.escaped_pdf(s.wi), 0.0f);
+}
+
+TEST(Lights, PointLightFallsOffWithSquaredDistance) {
+  Scene scene;
+  scene.lights.push_back(point_light(Vec3(0, 0, 2), Rgb(8.0f)));
+  scene.lights.push_back(constant_env(Rgb(0.0f)));
+  const LightTable lights(scene);
+  const LightSample s = lights.sample(Vec3(0, 0, -2), 0.25f, {0.5f, 0.5f});
+  ASSERT_TRUE(s.valid);
+  EXPECT_TRUE(s.delta);
+  EXPECT_EQ(s.pdf, 0.5f);
+  EXPECT_FLOAT_EQ(s.distance, 4.0f);
+  EXPECT_FLOAT_EQ(s.radiance.x, 0.5f);
+  EXPECT_EQ(s.wi, Vec3(0, 0, 1));
+}
+
+TEST(Lights, ConeChi2) {
+  Scene scene;
+  const Vec3 axis = normalize(Vec3(1, 1, 1));
+  const float half_angle = 20.0f * kPi / 180.0f;
+  scene.lights.push_back(cone_light(axis, half_angle, Rgb(3.0f)));
+  const LightTable lights(scene);
+  TestRng rng(11);
+  const auto r = test::chi2_sphere(
+      [&]() -> std::optional<Vec3> {
+        const float u_select = rng.uniform();
+        const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
+        if (!s.valid) return std::nullopt;
+        return s.wi;
+      },
+      [&](Vec3 w) { return lights.escaped_pdf(w); },
+      {.axis = axis, .cos_min = 2.0 * std::cos(half_angle) - 1.0});
+  EXPECT_GT(r.p_value, kMinPValue) << r.report;
+}
+
+// Cone and constant environment overlap; sample() is their mixture, with pdf escaped_pdf.
+TEST(Lights, OverlappingEscapedLightsChi2) {
+  Scene scene;
+  const Vec3 axis = normalize(Vec3(0, 1, -1));
+  scene.lights.push_back(cone_light(axis, 0.5f, Rgb(3.0f)));
+  scene.lights.push_back(constant_env(Rgb(0.5f)));
+  const LightTable lights(scene);
+  TestRng rng(12);
+  const auto r = test::chi2_sphere(
+      [&]() -> std::optional<Vec3> {
+        const float u_select = rng.uniform();
+        const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
+        if (!s.valid) return std::nullopt;
+        return s.wi;
+      },
+      [&](Vec3 w) { return lights.escaped_pdf(w); }, {.axis = axis});
+  EXPECT_GT(r.p_value, kMinPValue) << r.report;
+  expect_round_trip(scene, lights, Vec3(0.0f), 13);
+}
+
+TEST(Lights, ConeIrradiance) {
+  Scene scene;
+  const Vec3 axis = normalize(Vec3(-1, 0.5f, 2));
+  const float half_angle = 0.6f;
+  scene.lights.push_back(cone_light(axis, half_angle, Rgb(2.0f)));
+  const LightTable lights(scene);
+  const MeanEstimator e = estimate_irradiance(lights, Vec3(0.0f), axis, 14);
+  expect_agrees(e, 2.0 * M_PI * std::pow(std::sin(half_angle), 2), "cone facing the plane");
+}
+
+TEST(Lights, ConstantEnvIrradiance) {
+  Scene scene;
+  scene.lights.push_back(constant_env(Rgb(0.7f)));
+  const LightTable lights(scene);
+  const MeanEstimator e = estimate_irradiance(lights, Vec3(0.0f), normalize(Vec3(1, -2, 1)), 15);
+  expect_agrees(e, 0.7 * M_PI, "constant environment");
+}
+
+TEST(Lights, DirectionalIrradianceWithSelection) {
+  Scene scene;
+  const Vec3 n = normalize(Vec3(0, 1, 0.3f));
+  scene.lights.push_back(directional_light(Vec3(0.2f, 1, 0), Rgb(4.0f)));
+  scene.lights.push_back(constant_env(Rgb(0.5f)));
+  const LightTable lights(scene);
+  const double expected = 4.0 * dot(n, normalize(Vec3(0.2f, 1, 0))) + 0.5 * M_PI;
+  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 16), expected, "directional + constant");
+}
+
+TEST(Lights, EnvMapChi2) {
+  const EnvScene env;
+  const LightTable lights(env.scene);
+  TestRng rng(21);
+  const Vec3 blob_world = env.rotation.vector(map_direction(0.7f, 0.3f));
+  const auto r = test::chi2_sphere(
+      [&]() -> std::optional<Vec3> {
+        const float u_select = rng.uniform();
+        const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
+        if (!s.valid) return std::nullopt;
+        return s.wi;
+      },
+      [&](Vec3 w) { return lights.escaped_pdf(w); }, {.axis = blob_world});
+  EXPECT_GT(r.p_value, kMinPValue) << r.report;
+  expect_round_trip(env.scene, lights, Vec3(0.0f), 22);
+}
+
+// Per pixel of the map, the sampling probability is proportional to luminance * sin(theta),
+// computed here from the image alone (the fixture keeps every pixel above the floor).
+TEST(Lights, EnvMapPixelProbabilities) {
+  const EnvScene env;
+  const LightTable lights(env.scene);
+  std::vector<double> weight(kEnvWidth * kEnvHeight);
+  double total = 0;
+  for (int y = 0; y < kEnvHeight; ++y) {
+    for (int x = 0; x < kEnvWidth; ++x) {
+      weight[y * kEnvWidth + x] =
+          luminance(env.pixel(x, y)) * std::sin((y + 0.5) * M_PI / kEnvHeight);
+      total += weight[y * kEnvWidth + x];
+    }
+  }
+  std::vector<double> counts(weight.size(), 0);
+  TestRng rng(23);
+  for (int k = 0; k < kSamples; ++k) {
+    const float u_select = rng.uniform();
+    const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
+    ASSERT_TRUE(s.valid);
+    const Vec3 m = env.to_map(s.wi);
+    const double u = std::atan2(m.x, -m.z) / (2 * M_PI) + 0.5, v = std::acos(m.y) / M_PI;
+    const int x = std::clamp(static_cast<int>(u * kEnvWidth), 0, kEnvWidth - 1);
+    const int y = std::clamp(static_cast<int>(v * kEnvHeight), 0, kEnvHeight - 1);
+    counts[y * kEnvWidth + x] += 1;
+  }
+  double statistic = 0;
+  for (size_t i = 0; i < weight.size(); ++i) {
+    const double expected = kSamples * weight[i] / total;
+    statistic += (counts[i] - expected) * (counts[i] - expected) / expected;
+  }
+  EXPECT_GT(test::chi2_survival(statistic, static_cast<double>(weight.size() - 1)), kMinPValue)
+      << "chi2 " << statistic;
+}
+
+// Integral of luminance over the sphere: exact for nearest lookup (sum of pixel radiance times
+// pixel solid angle) against light sampling; a cosine-weighted one against uniform sampling.
+TEST(Lights, EnvMapIntegrals) {
+  const EnvScene env;
+  const LightTable lights(env.scene);
+  double exact = 0;
+  for (int y = 0; y < kEnvHeight; ++y) {
+    const double solid_angle =
+        2 * M_PI / kEnvWidth *
+        (std::cos(y * M_PI / kEnvHeight) - std::cos((y + 1) * M_PI / kEnvHeight));
+    for (int x = 0; x < kEnvWidth; ++x)
+      exact += luminance(env.scale * env.pixel(x, y)) * solid_angle;
+  }
+  const Vec3 n = normalize(Vec3(0.3f, -0.4f, 1));
+  TestRng rng(24);
+  MeanEstimator total, irradiance_light, irradiance_uniform;
+  for (int k = 0; k < kSamples; ++k) {
+    const float u_select = rng.uniform();
+    const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
+    ASSERT_TRUE(s.valid);
+    total.add(luminance(s.radiance) / s.pdf);
+    irradiance_light.add(luminance(s.radiance) * std::max(0.0f, dot(n, s.wi)) / s.pdf);
+    const Vec3 w = sample_uniform_sphere(rng.uniform2());
+    irradiance_uniform.add(luminance(lights.escaped_radiance(w)) * std::max(0.0f, dot(n, w)) /
+                           uniform_sphere_pdf());
+  }
+  expect_agrees(total, exact, "total radiant flux per area");
+  EXPECT_LT(test::z_score(irradiance_light.mean(), irradiance_light.standard_error(),
+                          irradiance_uniform.mean(), irradiance_uniform.standard_error()),
+            kMaxZ)
+      << irradiance_light.mean() << " vs " << irradiance_uniform.mean();
+}
+
+TEST(Lights, SquareEmitterIrradiance) {
+  Scene scene;
+  add_area_light(scene, square_emitter(1.0f, Rgb(2.0f)));
+  const LightTable lights(scene);
+  const double expected = 2.0 * M_PI * 4 * corner_form_factor(0.5, 0.5, 1.0);
+  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), Vec3(0, 0, 1), 31), expected,
+                "square emitter");
+  expect_round_trip(scene, lights, Vec3(0.1f, -0.2f, 0.0f), 32);
+}
+
+TEST(Lights, SquareEmitterBackSideIsDark) {
+  Scene scene;
+  const int shape = add_area_light(scene, square_emitter(1.0f, Rgb(2.0f)));
+  const LightTable lights(scene);
+  TestRng rng(33);
+  for (int k = 0; k < 10000; ++k) {
+    const float u_select = rng.uniform();
+    EXPECT_FALSE(lights.sample(Vec3(0.1f, 0.2f, 2.0f), u_select, rng.uniform2()).valid);
+  }
+  EXPECT_EQ(lights.area_radiance(shape, Vec3(0, 0, -1), Vec3(0, 0, -1)), Rgb(0.0f));
+  EXPECT_EQ(lights.area_radiance(shape, Vec3(0, 0, -1), Vec3(0, 0, 1)), Rgb(2.0f));
+}
+
+// A sphere of radius R at distance d subtends sin(alpha) = R / d: E = L pi (R / d)^2 on a plane
+// facing it (the same cap as a cone light).
+TEST(Lights, SphereEmitterIrradiance) {
+  Scene scene;
+  add_area_light(scene, sphere_emitter(Vec3(0, 0, 3), 1.0f, Rgb(2.0f)));
+  const LightTable lights(scene);
+  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), Vec3(0, 0, 1), 34), 2.0 * M_PI / 9.0,
+                "sphere emitter");
+  expect_round_trip(scene, lights, Vec3(0.2f, 0.1f, -0.5f), 35);
+  // From inside, only the sphere's back side is visible.
+  TestRng rng(36);
+  for (int k = 0; k < 1000; ++k) {
+    const float u_select = rng.uniform();
+    EXPECT_FALSE(lights.sample(Vec3(0, 0.3f, 3), u_select, rng.uniform2()).valid);
+  }
+}
+
+// Every kind at once: the selection probability enters each pdf, and the irradiance is the sum
+// of the closed forms (cone and sphere both subtend caps).
+TEST(Lights, AllKindsTogether) {
+  Scene scene;
+  const Vec3 n(0, 0, 1);
+  scene.lights.push_back(directional_light(Vec3(0.5f, 0, 1), Rgb(1.5f)));
+  scene.lights.push_back(cone_light(Vec3(0, 0, 1), 0.3f, Rgb(4.0f)));
+  scene.lights.push_back(point_light(Vec3(0, 2, 2), Rgb(3.0f)));
+  add_area_light(scene, square_emitter(1.0f, Rgb(2.0f)));
+  add_area_light(scene, sphere_emitter(Vec3(3, 0, 3), 1.0f, Rgb(5.0f)));
+  const LightTable lights(scene);
+  expect_round_trip(scene, lights, Vec3(0.0f), 41);
+
+  const double directional = 1.5 * dot(n, normalize(Vec3(0.5f, 0, 1)));
+  const double cone = 4.0 * M_PI * std::pow(std::sin(0.3), 2);
+  const double point = 3.0 * (2.0 / std::sqrt(8.0)) / 8.0;
+  const double square = 2.0 * M_PI * 4 * corner_form_factor(0.5, 0.5, 1.0);
+  // The sphere's axis is 45 degrees off the normal but its cap stays above the horizon, where
+  // the cosine-weighted integral over a cap is pi sin^2(alpha) cos(axis angle).
+  const double sphere = 5.0 * M_PI * (1.0 / 18.0) * std::cos(M_PI / 4);
+  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 42),
+                directional + cone + point + square + sphere, "all kinds");
+}
+
+}  // namespace
+}  // namespace snee

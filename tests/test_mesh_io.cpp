@@ -1,0 +1,351 @@
+// Mesh readers (OBJ, ASCII and binary PLY of both byte orders) and the edge and orientation
+// checks the scene loader relies on, on handmade files and on the project's test meshes.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "scene/mesh_io.h"
+#include "scene/mesh_topology.h"
+#include "scene/scene_error.h"
+
+namespace snee {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kSharedMeshes = "/work/shared/data/meshes";
+
+class MeshIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("snee_test_mesh_io_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& contents) {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << contents;
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+// Message of the SceneError that `f` throws, or a failure if it throws none.
+template <typename F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no SceneError thrown";
+  return "";
+}
+
+// A unit cube [0,1]^3 with outward (counter-clockwise from outside) winding.
+TriangleMesh unit_cube() {
+  TriangleMesh m;
+  for (int i = 0; i < 8; ++i) {
+    m.positions.push_back(Vec3(static_cast<float>(i & 1), static_cast<float>((i >> 1) & 1),
+                               static_cast<float>((i >> 2) & 1)));
+  }
+  m.indices = {0, 2, 3, 0, 3, 1,   // z = 0, normal -z
+               4, 5, 7, 4, 7, 6,   // z = 1, normal +z
+               0, 1, 5, 0, 5, 4,   // y = 0, normal -y
+               2, 6, 7, 2, 7, 3,   // y = 1, normal +y
+               0, 4, 6, 0, 6, 2,   // x = 0, normal -x
+               1, 3, 7, 1, 7, 5};  // x = 1, normal +x
+  return m;
+}
+
+TEST_F(MeshIoTest, ObjPolygonsBecomeTriangleFans) {
+  const std::string path = write("quad.obj",
+                                 "# a quad and a triangle\n"
+                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 2.5\n"
+                                 "f 1 2 3 4\n"
+                                 "f 1/1/1 2/2/2 5/3/3\n");
+  const TriangleMesh m = load_mesh(path);
+  ASSERT_EQ(m.positions.size(), 5u);
+  EXPECT_EQ(m.positions[4], Vec3(0, 0, 2.5f));
+  const std::vector<uint32_t> expected = {0, 1, 2, 0, 2, 3, 0, 1, 4};
+  EXPECT_EQ(m.indices, expected);
+}
+
+TEST_F(MeshIoTest, ObjIndexOutOfRangeNamesFileAndFace) {
+  const std::string path = write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 7\n");
+  const std::string message = error_of([&] { load_obj(path); });
+  EXPECT_NE(message.find("bad.obj"), std::string::npos) << message;
+  EXPECT_NE(message.find("face 2"), std::string::npos) << message;
+  EXPECT_NE(message.find("vertex 7"), std::string::npos) << message;
+}
+
+TEST_F(MeshIoTest, ObjNonFiniteCoordinateNamesVertex) {
+  const std::string path = write("nan.obj", "v 0 0 0\nv 1 1e60 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string message = error_of([&] { load_obj(path); });
+  EXPECT_NE(message.find("nan.obj"), std::string::npos) << message;
+  EXPECT_NE(message.find("vertex 2"), std::string::npos) << message;
+}
+
+TEST_F(MeshIoTest, MissingAndUnsupportedFilesNameTheFile) {
+  const std::string missing = (dir_ / "missing.obj").string();
+  EXPECT_NE(error_of([&] { load_mesh(missing); }).find(missing), std::string::npos);
+  const std::string missing_ply = (dir_ / "missing.ply").string();
+  EXPECT_NE(error_of([&] { load_mesh(missing_ply); }).find(missing_ply), std::string::npos);
+  const std::string stl = write("thing.stl", "solid x\n");
+  const std::string message = error_of([&] { load_mesh(stl); });
+  EXPECT_NE(message.find("thing.stl"), std::string::npos);
+  EXPECT_NE(message.find(".obj or .ply"), std::string::npos);
+}
+
+// Exercises what real scans carry: extra scalar and list properties on the vertex, extra
+// properties after the index list, and an element the reader does not know.
+TEST_F(MeshIoTest, AsciiPlyIgnoresOtherPropertiesAndElements) {
+  const std::string path = write("tri.ply",
+                                 "ply\r\n"
+                                 "format ascii 1.0\n"
+                                 "comment made by hand\n"
+                                 "element vertex 4\n"
+                                 "property float x\n"
+                                 "property float confidence\n"
+                                 "property double y\n"
+                                 "property list uchar float weights\n"
+                                 "property float z\n"
+                                 "element face 2\n"
+                                 "property list uchar int vertex_indices\n"
+                                 "property uchar red\n"
+                                 "element edge 1\n"
+                                 "property int vertex1\n"
+                                 "property list int int path\n"
+                                 "end_header\n"
+                                 "0 0.5 0 2 9 9 0\n"
+                                 "1 0.5 0 0 0\n"
+                                 "1 0.5 1 1 7 0\n"
+                                 "0 0.5 1 0 -1.5e1\n"
+                                 "3 0 1 2 255\n"
+                                 "4 0 2 3 1 12\n"
+                                 "0 3 1 2 3\n");
+  const TriangleMesh m = load_ply(path);
+  ASSERT_EQ(m.positions.size(), 4u);
+  EXPECT_EQ(m.positions[2], Vec3(1, 1, 0));
+  EXPECT_EQ(m.positions[3], Vec3(0, 1, -15));
+  const std::vector<uint32_t> expected = {0, 1, 2, 0, 2, 3, 0, 3, 1};
+  EXPECT_EQ(m.indices, expected);
+}
+
+TEST_F(MeshIoTest, AsciiPlyErrorsNameFileLineAndElement) {
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string bad_index = write("index.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
+  std::string message = error_of([&] { load_ply(bad_index); });
+  EXPECT_NE(message.find("index.ply"), std::string::npos) << message;
+  EXPECT_NE(message.find("line 13"), std::string::npos) << message;
+  EXPECT_NE(message.find("face 0"), std::string::npos) << message;
+  EXPECT_NE(message.find("vertex index 3 is out of range"), std::string::npos) << message;
+
+  const std::string bad_number = write("number.ply", header + "0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n");
+  message = error_of([&] { load_ply(bad_number); });
+  EXPECT_NE(message.find("line 11"), std::string::npos) << message;
+  EXPECT_NE(message.find("vertex 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("'y'"), std::string::npos) << message;
+
+  const std::string infinite = write("inf.ply", header + "0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n");
+  message = error_of([&] { load_ply(infinite); });
+  EXPECT_NE(message.find("line 11"), std::string::npos) << message;
+  EXPECT_NE(message.find("finite number for property 'z'"), std::string::npos) << message;
+
+  const std::string truncated = write("short.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n");
+  EXPECT_NE(error_of([&] { load_ply(truncated); }).find("face 0"), std::string::npos);
+
+  const std::string no_end = write("noend.ply", "ply\nformat ascii 1.0\nelement vertex 0\n");
+  EXPECT_NE(error_of([&] { load_ply(no_end); }).find("end_header"), std::string::npos);
+
+  const std::string not_ply = write("text.ply", "hello\n");
+  message = error_of([&] { load_ply(not_ply); });
+  EXPECT_NE(message.find("line 1"), std::string::npos) << message;
+
+  const std::string no_faces =
+      write("noface.ply",
+            "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+            "property float z\nend_header\n0 0 0\n");
+  EXPECT_NE(error_of([&] { load_ply(no_faces); }).find("no 'face' element"), std::string::npos);
+}
+
+// Appends `value` in the given byte order.
+template <typename T>
+void put(std::string& out, T value, bool big_endian) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  if (big_endian != (std::endian::native == std::endian::big)) {
+    std::reverse(bytes, bytes + sizeof(T));
+  }
+  out.append(bytes, sizeof(T));
+}
+
+std::string binary_ply(bool big_endian, bool truncate) {
+  std::string out = std::string("ply\nformat ") +
+                    (big_endian ? "binary_big_endian" : "binary_little_endian") +
+                    " 1.0\n"
+                    "element vertex 4\n"
+                    "property double x\nproperty float y\nproperty short tag\n"
+                    "property float z\n"
+                    "element material 1\nproperty list uchar uchar name\n"
+                    "element face 2\n"
+                    "property list int uint vertex_index\n"
+                    "end_header\n";
+  const double xs[4] = {0, 1, 1, 0.25};
+  const float ys[4] = {0, 0, 1, 1};
+  const float zs[4] = {-1, -1, -1, 3.5f};
+  for (int i = 0; i < 4; ++i) {
+    put<double>(out, xs[i], big_endian);
+    put<float>(out, ys[i], big_endian);
+    put<int16_t>(out, static_cast<int16_t>(-i), big_endian);
+    put<float>(out, zs[i], big_endian);
+  }
+  put<uint8_t>(out, 3, big_endian);
+  out += "abc";
+  put<int32_t>(out, 3, big_endian);
+  for (uint32_t i : {0u, 1u, 2u}) put<uint32_t>(out, i, big_endian);
+  put<int32_t>(out, 4, big_endian);
+  for (uint32_t i : {3u, 2u, 1u, 0u}) put<uint32_t>(out, i, big_endian);
+  if (truncate) out.resize(out.size() - 2);
+  return out;
+}
+
+class BinaryPlyTest : public MeshIoTest, public ::testing::WithParamInterface<bool> {};
+
+TEST_P(BinaryPlyTest, ReadsEitherByteOrder) {
+  const bool big_endian = GetParam();
+  const TriangleMesh m = load_ply(write("mesh.ply", binary_ply(big_endian, false)));
+  ASSERT_EQ(m.positions.size(), 4u);
+  EXPECT_EQ(m.positions[1], Vec3(1, 0, -1));
+  EXPECT_EQ(m.positions[3], Vec3(0.25f, 1, 3.5f));
+  const std::vector<uint32_t> expected = {0, 1, 2, 3, 2, 1, 3, 1, 0};
+  EXPECT_EQ(m.indices, expected);
+}
+
+TEST_P(BinaryPlyTest, TruncatedFileNamesElementAndOffset) {
+  const std::string path = write("cut.ply", binary_ply(GetParam(), true));
+  const std::string message = error_of([&] { load_ply(path); });
+  EXPECT_NE(message.find("cut.ply"), std::string::npos) << message;
+  EXPECT_NE(message.find("face 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("byte "), std::string::npos) << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(ByteOrder, BinaryPlyTest, ::testing::Values(false, true),
+                         [](const auto& param_info) {
+                           return param_info.param ? "BigEndian" : "LittleEndian";
+                         });
+
+TEST(MeshTopology, CubeIsClosedWithUnitVolume) {
+  TriangleMesh cube = unit_cube();
+  const EdgeCounts edges = count_edges(cube);
+  EXPECT_EQ(edges.boundary, 0u);
+  EXPECT_EQ(edges.non_manifold, 0u);
+  EXPECT_NEAR(signed_volume(cube), 1.0, 1e-12);
+  flip_winding(cube);
+  EXPECT_NEAR(signed_volume(cube), -1.0, 1e-12);
+}
+
+TEST(MeshTopology, VolumeDoesNotDependOnPosition) {
+  TriangleMesh cube = unit_cube();
+  apply_transform(Transform::translate(Vec3(100, -50, 7)) * Transform::scale(Vec3(2, 3, 0.5f)),
+                  cube);
+  EXPECT_NEAR(signed_volume(cube), 3.0, 1e-6);
+}
+
+TEST(MeshTopology, CountsBoundaryAndNonManifoldEdges) {
+  TriangleMesh open = unit_cube();
+  open.indices.resize(open.indices.size() - 6);  // remove the x = 1 face: a square hole
+  EXPECT_EQ(count_edges(open).boundary, 4u);
+  EXPECT_EQ(count_edges(open).non_manifold, 0u);
+
+  // Three triangles on one edge (a "book" with three pages).
+  TriangleMesh book;
+  book.positions = {{0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}};
+  book.indices = {0, 1, 2, 1, 0, 3, 0, 1, 4};
+  const EdgeCounts edges = count_edges(book);
+  EXPECT_EQ(edges.non_manifold, 1u);
+  EXPECT_EQ(edges.boundary, 6u);
+}
+
+TEST(MeshTopology, NormalizingTransformGivesUnitBoundingSphere) {
+  TriangleMesh m;
+  m.positions = {{10, 20, 30}, {14, 20, 30}, {10, 23, 30}};
+  m.indices = {0, 1, 2};
+  apply_transform(normalizing_transform(m), m);
+  // The box centre (12, 21.5, 30) goes to the origin; the farthest vertex is at 2.5.
+  EXPECT_NEAR(m.positions[0].x, -0.8f, 1e-6f);
+  EXPECT_NEAR(m.positions[0].y, -0.6f, 1e-6f);
+  EXPECT_NEAR(m.positions[2].y, 0.6f, 1e-6f);
+  EXPECT_NEAR(length(m.positions[0]), 1.0f, 1e-6f);
+}
+
+TEST(ProjectMeshes, BunnyNpmIsClosedAndOutward) {
+  const TriangleMesh m = load_mesh(std::string(SNEE_PROJECT_DATA_DIR) + "/meshes/bunny-npm.obj");
+  EXPECT_EQ(m.triangle_count(), 3674u);
+  EXPECT_EQ(m.positions.size(), 1839u);
+  const EdgeCounts edges = count_edges(m);
+  EXPECT_EQ(edges.boundary, 0u);
+  EXPECT_EQ(edges.non_manifold, 0u);
+  EXPECT_GT(signed_volume(m), 0.0);
+}
+
+TEST(ProjectMeshes, ReorientingByVolumeFixesAnInsideOutBunny) {
+  TriangleMesh m = load_mesh(std::string(SNEE_PROJECT_DATA_DIR) + "/meshes/bunny-npm.obj");
+  const double volume = signed_volume(m);
+  flip_winding(m);
+  EXPECT_DOUBLE_EQ(signed_volume(m), -volume);
+  if (signed_volume(m) < 0) flip_winding(m);
+  EXPECT_DOUBLE_EQ(signed_volume(m), volume);
+}
+
+TEST(SharedMeshes, StanfordBunnyHas223BoundaryEdges) {
+  const std::string path = kSharedMeshes + "/stanford-bunny.obj";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " is not present";
+  const TriangleMesh m = load_mesh(path);
+  EXPECT_EQ(m.triangle_count(), 69451u);
+  EXPECT_EQ(m.positions.size(), 35947u);
+  EXPECT_EQ(count_edges(m).boundary, 223u);
+}
+
+TEST(SharedMeshes, DragonAsciiPlyLoadsQuickly) {
+  const std::string path = kSharedMeshes + "/dragon_vrip.ply";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " is not present";
+  const auto start = std::chrono::steady_clock::now();
+  const TriangleMesh m = load_mesh(path);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  RecordProperty("load_seconds", std::to_string(seconds));
+  EXPECT_EQ(m.triangle_count(), 871414u);
+  EXPECT_EQ(m.positions.size(), 437645u);
+  const EdgeCounts edges = count_edges(m);
+  EXPECT_EQ(edges.boundary, 4270u);
+  // Generous so a loaded shared machine does not fail it; an iostream parser takes far longer.
+  EXPECT_LT(seconds, 10.0);
+}
+
+TEST(SharedMeshes, DecimatedDragonHasNonManifoldEdges) {
+  const std::string path = kSharedMeshes + "/dragon_vrip_res4.ply";
+  if (!fs::exists(path)) GTEST_SKIP() << path << " is not present";
+  const TriangleMesh m = load_mesh(path);
+  EXPECT_EQ(m.triangle_count(), 11102u);
+  EXPECT_EQ(m.positions.size(), 5205u);
+  const EdgeCounts edges = count_edges(m);
+  EXPECT_EQ(edges.boundary, 0u);
+  EXPECT_EQ(edges.non_manifold, 803u);
+}
+
+}  // namespace
+}  // namespace snee
