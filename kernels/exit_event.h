@@ -25,8 +25,8 @@ struct ExitEvent {
 };
 
 // Called at a surface vertex before the path's vertex memory is shifted.
-ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p, Vec3 n,
-                          const SurfaceInfo& info);
+ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
+                          Vec3 n, const SurfaceInfo& info);
 
 struct ExitWeights {
   float if_first_hit;      // V_first(x_i, x_k) = 1: four-way weight
@@ -34,13 +34,13 @@ struct ExitWeights {
 };
 
 // U_L: a light sample at the exit point (light pdf includes selection; `delta` for delta lights).
-ExitWeights exit_light_sample_weights(const KernelContext& ctx, const ExitEvent& exit, Vec3 omega_o, float light_pdf,
-                                      bool delta);
+ExitWeights exit_light_sample_weights(const KernelContext& ctx, const ExitEvent& exit, Vec3 omega_o,
+                                      float light_pdf, bool delta);
 
 // U_B: the BSDF-sampled exit direction omega_o may escape to a distant light.
 // Turns that into a connection now (gated by the escape, selected by V_first) and marks the
 // path so shade_escaped does not add the same light again.
-void defer_bsdf_exit(const KernelContext& ctx, PathState& state, uint32_t slot, const ExitEvent& exit, Vec3 omega_o,
-                     ShadowQueue& shadow);
+void defer_bsdf_exit(const KernelContext& ctx, PathState& state, uint32_t slot,
+                     const ExitEvent& exit, Vec3 omega_o, ShadowQueue& shadow);
 
 }  // namespace snee

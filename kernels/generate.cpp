@@ -4,11 +4,18 @@
 namespace snee {
 
 StageQueues::StageQueues(size_t slots)
-    : extend(slots), medium(slots), surface(slots), escaped(slots), probe(slots), retire(slots), rays(slots),
+    : extend(slots),
+      medium(slots),
+      surface(slots),
+      escaped(slots),
+      probe(slots),
+      retire(slots),
+      rays(slots),
       shadow(slots * 8) {}
 
-void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint32_t* slots, const uint32_t* pixels,
-                          const uint32_t* samples, size_t n, StageQueues& q, KernelCounters& counters) {
+void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint32_t* slots,
+                          const uint32_t* pixels, const uint32_t* samples, size_t n, StageQueues& q,
+                          KernelCounters& counters) {
   const float inv_w = 1.0f / static_cast<float>(ctx.width);
   const float inv_h = 1.0f / static_cast<float>(ctx.height);
   for (size_t i = 0; i < n; ++i) {

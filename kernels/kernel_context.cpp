@@ -7,9 +7,12 @@ namespace snee {
 
 const char* integrator_name(Integrator i) {
   switch (i) {
-    case Integrator::kPathTracer: return "pt";
-    case Integrator::kSnee: return "snee";
-    case Integrator::kStraightLine: return "sla";
+    case Integrator::kPathTracer:
+      return "pt";
+    case Integrator::kSnee:
+      return "snee";
+    case Integrator::kStraightLine:
+      return "sla";
   }
   return "?";
 }
@@ -28,16 +31,29 @@ void KernelCounters::add(const KernelCounters& o) {
   nonfinite_samples += o.nonfinite_samples;
 }
 
-KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l, Integrator integ,
-                             uint32_t seed_, int max_depth_, const SneeOptions& snee_)
-    : scene(&s), embree(&e), lights(&l), integrator(integ), seed(seed_), max_depth(max_depth_), snee(snee_),
-      epsilon(e.ray_epsilon()), width(s.camera.width), height(s.camera.height) {
+KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l,
+                             Integrator integ, uint32_t seed_, int max_depth_,
+                             const SneeOptions& snee_)
+    : scene(&s),
+      embree(&e),
+      lights(&l),
+      integrator(integ),
+      seed(seed_),
+      max_depth(max_depth_),
+      snee(snee_),
+      epsilon(e.ray_epsilon()),
+      width(s.camera.width),
+      height(s.camera.height) {
   media.reserve(s.media.size());
   for (const Medium& m : s.media) media.push_back({m.sigma_s, m.sigma_t(), m.g, true});
   surfaces.reserve(s.shapes.size());
   for (const Shape& shape : s.shapes) {
     const Material& mat = s.materials.at(static_cast<size_t>(shape.material));
-    SurfaceInfo info{mat.kind, {mat.ior, mat.roughness}, mat.albedo, shape.interior_medium, !is_black(shape.emission)};
+    SurfaceInfo info{mat.kind,
+                     {mat.ior, mat.roughness},
+                     mat.albedo,
+                     shape.interior_medium,
+                     !is_black(shape.emission)};
     surfaces.push_back(info);
     if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
     if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {

@@ -18,7 +18,8 @@ namespace snee {
 enum class Integrator : uint8_t {
   kPathTracer,    // "pt": volumetric path tracing, NEE only where no refraction is in the way
   kSnee,          // "snee": pt plus subdivision next-event estimation at medium vertices
-  kStraightLine,  // "sla": shadow rays pass dielectric boundaries with Fresnel transmittance (biased)
+  kStraightLine,  // "sla": shadow rays pass dielectric boundaries with Fresnel transmittance
+                  // (biased)
 };
 const char* integrator_name(Integrator i);
 // Throws std::invalid_argument listing the valid names.

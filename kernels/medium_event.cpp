@@ -10,8 +10,8 @@ namespace {
 // Next-event estimation from a medium vertex along a straight shadow ray. Worth a ray only when
 // the light can be reached without refraction (null boundaries), or under the straight-line
 // approximation, which lets the ray pass dielectric boundaries.
-void medium_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 x, Vec3 w_before, const MediumInfo& m,
-                ShadowQueue& shadow) {
+void medium_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 x, Vec3 w_before,
+                const MediumInfo& m, ShadowQueue& shadow) {
   if (ctx.lights->empty()) return;
   const RandomBlock r = draw(ctx, state, s, RngPurpose::kLightSample);
   const LightSample ls = ctx.lights->sample(x, r.u[0], {r.u[1], r.u[2]});
@@ -27,7 +27,8 @@ void medium_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 x, 
 
 }  // namespace
 
-void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters) {
+void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
+                  KernelCounters& counters) {
   (void)counters;
   for (const uint32_t s : q.medium) {
     const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];

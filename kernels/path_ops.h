@@ -7,7 +7,8 @@
 
 namespace snee {
 
-inline RandomBlock draw(const KernelContext& ctx, const PathState& state, uint32_t slot, RngPurpose purpose) {
+inline RandomBlock draw(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                        RngPurpose purpose) {
   return random_block(ctx.seed, state.pixel[slot], state.sample[slot], state.event[slot], purpose);
 }
 

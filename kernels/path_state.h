@@ -15,13 +15,14 @@ namespace snee {
 
 // Flags of a path slot.
 enum PathFlags : uint32_t {
-  kPathMediumVertexJ = 1u << 0,  // the previous vertex x_j was a medium scattering vertex
-  kPathMediumVertexI = 1u << 1,  // the vertex before it, x_i, was a medium scattering vertex
-  kPathEscapeDeferred = 1u << 2, // the distant light this ray may escape to is a pending connection
-  kPathLightSkipped = 1u << 3,   // "sla": any light this ray reaches was already counted by NEE
+  kPathMediumVertexJ = 1u << 0,   // the previous vertex x_j was a medium scattering vertex
+  kPathMediumVertexI = 1u << 1,   // the vertex before it, x_i, was a medium scattering vertex
+  kPathEscapeDeferred = 1u << 2,  // a distant light this ray may reach is a pending connection
+  kPathLightSkipped = 1u << 3,    // "sla": any light this ray reaches was counted by NEE
 };
 
 // X(type, name): one SoA array per field.
+// clang-format off
 #define SNEE_PATH_FIELDS(X)                                                                     \
   X(uint32_t, pixel)      /* film pixel index */                                                \
   X(uint32_t, sample)     /* sample index within the pixel */                                   \
@@ -36,12 +37,13 @@ enum PathFlags : uint32_t {
   X(float, hit_t)         /* closest hit distance of the current ray (inf on a miss) */         \
   X(uint32_t, hit_geom)                                                                         \
   X(uint32_t, hit_prim)                                                                         \
-  X(float, mis_pdf)       /* direction pdf at the last vertex if it also sampled lights, else 0 */ \
+  X(float, mis_pdf)       /* direction pdf at the last vertex if it also sampled lights */      \
   X(float, eta_scale)     /* undoes the eta^2 radiance scaling for Russian roulette */          \
-  X(float, xi_x) X(float, xi_y) X(float, xi_z)     /* SNEE memory: medium vertex x_i */          \
-  X(float, win_x) X(float, win_y) X(float, win_z)  /* propagation direction arriving at x_i */ \
-  X(float, xj_x) X(float, xj_y) X(float, xj_z)     /* the vertex after it, x_j */          \
+  X(float, xi_x) X(float, xi_y) X(float, xi_z)     /* SNEE memory: medium vertex x_i */         \
+  X(float, win_x) X(float, win_y) X(float, win_z)  /* propagation direction arriving at x_i */  \
+  X(float, xj_x) X(float, xj_y) X(float, xj_z)     /* the vertex after it, x_j */               \
   X(float, wjn_x) X(float, wjn_y) X(float, wjn_z)  /* propagation direction arriving at x_j */
+// clang-format on
 
 struct PathState {
 #define SNEE_DECLARE_FIELD(type, name) type* name = nullptr;
@@ -61,31 +63,41 @@ struct PathState {
 #define SNEE_OFFSET_FIELD(type, name) offset += capacity_ * sizeof(type);
     SNEE_PATH_FIELDS(SNEE_OFFSET_FIELD)
 #undef SNEE_OFFSET_FIELD
-    storage_.reset(static_cast<std::byte*>(::operator new(offset, std::align_val_t{64})));
+    storage_.reset(static_cast<std::byte*>(::operator new (offset, std::align_val_t{64})));
     std::byte* p = storage_.get();
-#define SNEE_ASSIGN_FIELD(type, name)  \
-  name = reinterpret_cast<type*>(p); \
+#define SNEE_ASSIGN_FIELD(type, name) \
+  name = reinterpret_cast<type*>(p);  \
   p += capacity_ * sizeof(type);
     SNEE_PATH_FIELDS(SNEE_ASSIGN_FIELD)
 #undef SNEE_ASSIGN_FIELD
   }
 
-  size_t capacity() const { return capacity_; }
+  size_t capacity() const {
+    return capacity_;
+  }
 
-  Rgb throughput(uint32_t s) const { return {throughput_r[s], throughput_g[s], throughput_b[s]}; }
+  Rgb throughput(uint32_t s) const {
+    return {throughput_r[s], throughput_g[s], throughput_b[s]};
+  }
   void set_throughput(uint32_t s, Rgb v) {
     throughput_r[s] = v.x;
     throughput_g[s] = v.y;
     throughput_b[s] = v.z;
   }
-  Rgb radiance(uint32_t s) const { return {radiance_r[s], radiance_g[s], radiance_b[s]}; }
+  Rgb radiance(uint32_t s) const {
+    return {radiance_r[s], radiance_g[s], radiance_b[s]};
+  }
   void add_radiance(uint32_t s, Rgb v) {
     radiance_r[s] += v.x;
     radiance_g[s] += v.y;
     radiance_b[s] += v.z;
   }
-  Vec3 origin(uint32_t s) const { return {origin_x[s], origin_y[s], origin_z[s]}; }
-  Vec3 direction(uint32_t s) const { return {dir_x[s], dir_y[s], dir_z[s]}; }
+  Vec3 origin(uint32_t s) const {
+    return {origin_x[s], origin_y[s], origin_z[s]};
+  }
+  Vec3 direction(uint32_t s) const {
+    return {dir_x[s], dir_y[s], dir_z[s]};
+  }
   void set_ray(uint32_t s, Vec3 o, Vec3 d) {
     origin_x[s] = o.x;
     origin_y[s] = o.y;
@@ -94,9 +106,15 @@ struct PathState {
     dir_y[s] = d.y;
     dir_z[s] = d.z;
   }
-  Vec3 vertex_i(uint32_t s) const { return {xi_x[s], xi_y[s], xi_z[s]}; }
-  Vec3 direction_in_i(uint32_t s) const { return {win_x[s], win_y[s], win_z[s]}; }
-  Vec3 vertex_j(uint32_t s) const { return {xj_x[s], xj_y[s], xj_z[s]}; }
+  Vec3 vertex_i(uint32_t s) const {
+    return {xi_x[s], xi_y[s], xi_z[s]};
+  }
+  Vec3 direction_in_i(uint32_t s) const {
+    return {win_x[s], win_y[s], win_z[s]};
+  }
+  Vec3 vertex_j(uint32_t s) const {
+    return {xj_x[s], xj_y[s], xj_z[s]};
+  }
   // Records a new vertex x (with the propagation direction arriving at it); x_j becomes x_i.
   void push_vertex(uint32_t s, Vec3 x, Vec3 w_arriving, bool medium_vertex) {
     const bool j_was_medium = (flags[s] & kPathMediumVertexJ) != 0;
@@ -112,14 +130,16 @@ struct PathState {
     wjn_x[s] = w_arriving.x;
     wjn_y[s] = w_arriving.y;
     wjn_z[s] = w_arriving.z;
-    flags[s] = (flags[s] & ~(kPathMediumVertexI | kPathMediumVertexJ)) | (j_was_medium ? kPathMediumVertexI : 0u) |
-               (medium_vertex ? kPathMediumVertexJ : 0u);
+    flags[s] = (flags[s] & ~(kPathMediumVertexI | kPathMediumVertexJ)) |
+               (j_was_medium ? kPathMediumVertexI : 0u) | (medium_vertex ? kPathMediumVertexJ : 0u);
   }
 
  private:
-  static size_t round_up(size_t n) { return (n + 15) & ~size_t{15}; }
+  static size_t round_up(size_t n) {
+    return (n + 15) & ~size_t{15};
+  }
   struct AlignedDelete {
-    void operator()(std::byte* p) const { ::operator delete(p, std::align_val_t{64}); }
+    void operator()(std::byte* p) const { ::operator delete (p, std::align_val_t{64}); }
   };
   std::unique_ptr<std::byte, AlignedDelete> storage_;
   size_t capacity_;

@@ -4,11 +4,26 @@ namespace snee {
 
 RayBatch::RayBatch(size_t capacity)
     : capacity_(capacity),
-      org_x_(capacity), org_y_(capacity), org_z_(capacity), tnear_(capacity),
-      dir_x_(capacity), dir_y_(capacity), dir_z_(capacity), time_(capacity), tfar_(capacity),
-      mask_(capacity), id_(capacity), flags_(capacity),
-      ng_x_(capacity), ng_y_(capacity), ng_z_(capacity), u_(capacity), v_(capacity),
-      prim_id_(capacity), geom_id_(capacity), inst_id_(capacity) {}
+      org_x_(capacity),
+      org_y_(capacity),
+      org_z_(capacity),
+      tnear_(capacity),
+      dir_x_(capacity),
+      dir_y_(capacity),
+      dir_z_(capacity),
+      time_(capacity),
+      tfar_(capacity),
+      mask_(capacity),
+      id_(capacity),
+      flags_(capacity),
+      ng_x_(capacity),
+      ng_y_(capacity),
+      ng_z_(capacity),
+      u_(capacity),
+      v_(capacity),
+      prim_id_(capacity),
+      geom_id_(capacity),
+      inst_id_(capacity) {}
 
 uint32_t RayBatch::push(Vec3 origin, Vec3 direction, float tnear, float tfar) {
   const size_t i = size_++;
@@ -36,8 +51,8 @@ RayArrays RayBatch::rays() {
 }
 
 HitArrays RayBatch::hits() {
-  return {ng_x_.data(), ng_y_.data(), ng_z_.data(), u_.data(), v_.data(),
-          prim_id_.data(), geom_id_.data(), inst_id_.data()};
+  return {ng_x_.data(), ng_y_.data(),    ng_z_.data(),    u_.data(),
+          v_.data(),    prim_id_.data(), geom_id_.data(), inst_id_.data()};
 }
 
 ShadowQueue::ShadowQueue(size_t segment_capacity) : segments_(segment_capacity) {

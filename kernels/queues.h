@@ -18,7 +18,7 @@ class AlignedArray {
  public:
   AlignedArray() = default;
   explicit AlignedArray(size_t n)
-      : data_(static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64}))), size_(n) {}
+      : data_(static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{64}))), size_(n) {}
   T* data() const { return data_.get(); }
   T& operator[](size_t i) { return data_.get()[i]; }
   const T& operator[](size_t i) const { return data_.get()[i]; }
@@ -26,7 +26,7 @@ class AlignedArray {
 
  private:
   struct Delete {
-    void operator()(T* p) const { ::operator delete(p, std::align_val_t{64}); }
+    void operator()(T* p) const { ::operator delete (p, std::align_val_t{64}); }
   };
   std::unique_ptr<T, Delete> data_;
   size_t size_ = 0;
@@ -86,7 +86,7 @@ inline constexpr int32_t kVisibilityOnly = -2;
 struct ShadowConnection {
   uint32_t slot;
   uint32_t first_segment;
-  uint32_t segment_count;  // gating segments, stored consecutively from first_segment
+  uint32_t segment_count;    // gating segments, stored consecutively from first_segment
   int32_t selector_segment;  // -1 if none
   Rgb if_clear;              // contribution when the selector is clear (or absent)
   Rgb if_selector_blocked;

@@ -11,13 +11,13 @@ namespace snee {
 
 // What a block of four numbers is used for within one path event; each purpose owns its block.
 enum class RngPurpose : uint32_t {
-  kCamera,         // pixel jitter
-  kFreeFlight,     // channel, distance
-  kPhase,          // scattering direction
-  kBsdf,           // lobe, microfacet normal
-  kLightSample,    // light selection and position
+  kCamera,       // pixel jitter
+  kFreeFlight,   // channel, distance
+  kPhase,        // scattering direction
+  kBsdf,         // lobe, microfacet normal
+  kLightSample,  // light selection and position
   kRussianRoulette,
-  kSneeProbe,      // probe direction
+  kSneeProbe,                // probe direction
   kSneeTopToBottom,          // light (3), inward microfacet normal (first of 2)
   kSneeTopToBottomDistance,  // second normal number, technique, channel, distance
   kSneeBottomToTop,          // middle vertex (4)
@@ -30,7 +30,9 @@ struct RandomBlock {
 };
 
 // Maps 32 random bits to [0, 1) with 24 bits of precision (exact in float).
-inline float bits_to_unit_float(uint32_t bits) { return static_cast<float>(bits >> 8) * 0x1p-24f; }
+inline float bits_to_unit_float(uint32_t bits) {
+  return static_cast<float>(bits >> 8) * 0x1p-24f;
+}
 
 inline RandomBlock random_block(uint32_t seed, uint32_t pixel, uint32_t sample, uint32_t event,
                                 RngPurpose purpose) {

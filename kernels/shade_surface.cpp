@@ -9,13 +9,18 @@ namespace snee {
 namespace {
 
 // Medium on the side of the surface that direction w points into.
-int32_t medium_on_side(const SurfaceInfo& info, Vec3 w, Vec3 n) { return dot(w, n) >= 0 ? -1 : info.interior_medium; }
+int32_t medium_on_side(const SurfaceInfo& info, Vec3 w, Vec3 n) {
+  return dot(w, n) >= 0 ? -1 : info.interior_medium;
+}
 
-bool needs_tracking(const KernelContext& ctx, int32_t medium) { return medium >= 0 || ctx.has_null_surfaces; }
+bool needs_tracking(const KernelContext& ctx, int32_t medium) {
+  return medium >= 0 || ctx.has_null_surfaces;
+}
 
 // Light sample at a non-delta surface vertex, weighted against BSDF sampling.
-void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p, Vec3 n, const Frame& frame, Vec3 wo_local,
-                 const SurfaceInfo& info, ShadowQueue& shadow, const ExitEvent* exit) {
+void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p, Vec3 n,
+                 const Frame& frame, Vec3 wo_local, const SurfaceInfo& info, ShadowQueue& shadow,
+                 const ExitEvent* exit) {
   const RandomBlock r = draw(ctx, state, s, RngPurpose::kLightSample);
   const LightSample ls = ctx.lights->sample(p, r.u[0], {r.u[1], r.u[2]});
   if (!ls.valid || ls.pdf <= 0) return;
@@ -31,16 +36,20 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
     bsdf_pdf = dielectric_pdf(info.dielectric, wo_local, wi_local);
   }
   if (f <= 0) return;
-  const Rgb unweighted = state.throughput(s) * reflectance * ls.radiance * (f * std::fabs(wi_local.z) / ls.pdf);
+  const Rgb unweighted =
+      state.throughput(s) * reflectance * ls.radiance * (f * std::fabs(wi_local.z) / ls.pdf);
   const Vec3 origin = offset_origin(p, n, ls.wi, ctx.epsilon);
   const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
-  const int32_t medium = needs_tracking(ctx, medium_on_side(info, ls.wi, n)) ? medium_on_side(info, ls.wi, n) : kVisibilityOnly;
+  const int32_t medium = needs_tracking(ctx, medium_on_side(info, ls.wi, n))
+                             ? medium_on_side(info, ls.wi, n)
+                             : kVisibilityOnly;
   const uint32_t seg = shadow.add_segment(origin, ls.wi, tmax, medium);
   if (exit && exit->snee_possible && wi_local.z > 0 && std::isinf(ls.distance)) {
     // A light-sampled exit toward a distant light after two medium vertices: SNEE could have
     // made this path too.
     const ExitWeights w = exit_light_sample_weights(ctx, *exit, ls.wi, ls.pdf, ls.delta);
-    const uint32_t selector = shadow.add_segment(exit->x_i, exit->first_hit_direction, exit->first_hit_tmax, kVisibilityOnly);
+    const uint32_t selector = shadow.add_segment(exit->x_i, exit->first_hit_direction,
+                                                 exit->first_hit_tmax, kVisibilityOnly);
     shadow.add_connection({s, seg, 1, static_cast<int32_t>(selector), unweighted * w.if_first_hit,
                            unweighted * w.if_not_first_hit});
     return;
@@ -51,7 +60,8 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
 
 }  // namespace
 
-void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters) {
+void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
+                   KernelCounters& counters) {
   (void)counters;
   for (const uint32_t s : q.surface) {
     const Vec3 d = state.direction(s);
@@ -65,7 +75,10 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q, K
     if (info.emissive && dot(d, n) < 0 && !light_skipped) {
       const Rgb le = ctx.lights->area_radiance(static_cast<int>(geom), n, d);
       const float pdf = state.mis_pdf[s];
-      const float weight = pdf > 0 ? power_heuristic(pdf, ctx.lights->area_pdf(static_cast<int>(geom), state.origin(s), p, n)) : 1.0f;
+      const float weight =
+          pdf > 0 ? power_heuristic(
+                        pdf, ctx.lights->area_pdf(static_cast<int>(geom), state.origin(s), p, n))
+                  : 1.0f;
       state.add_radiance(s, state.throughput(s) * le * weight);
     }
 
@@ -93,7 +106,8 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q, K
     const Vec3 wo_local = frame.to_local(-d);
     const bool delta_bsdf = info.kind == MaterialKind::kDielectric && info.dielectric.delta();
     if (!delta_bsdf && !ctx.lights->empty() && !exit.light_handled_elsewhere) {
-      surface_nee(ctx, state, s, p, n, frame, wo_local, info, q.shadow, exit.snee_possible ? &exit : nullptr);
+      surface_nee(ctx, state, s, p, n, frame, wo_local, info, q.shadow,
+                  exit.snee_possible ? &exit : nullptr);
     }
 
     const RandomBlock r = draw(ctx, state, s, RngPurpose::kBsdf);
@@ -111,7 +125,8 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q, K
       continue;
     }
     const Vec3 wi = frame.to_world(bs.wi);
-    state.set_throughput(s, state.throughput(s) * reflectance * (bs.f * std::fabs(bs.wi.z) / bs.pdf));
+    state.set_throughput(s,
+                         state.throughput(s) * reflectance * (bs.f * std::fabs(bs.wi.z) / bs.pdf));
     state.mis_pdf[s] = bs.delta ? 0.0f : bs.pdf;
     if (bs.transmission) {
       const bool entering = dot(wi, n) < 0;

@@ -50,7 +50,8 @@ void trace_tracked_segments(const KernelContext& ctx, StageQueues& q, KernelCoun
         const bool hit = batch.geom(b) != kInvalidId;
         const float t = hit ? batch.tfar(b) : remaining[i];
         if (media[i] >= 0 && std::isfinite(t)) {
-          transmittance[i] *= snee::transmittance(ctx.media[static_cast<size_t>(media[i])].sigma_t, t);
+          transmittance[i] *=
+              snee::transmittance(ctx.media[static_cast<size_t>(media[i])].sigma_t, t);
         }
         if (!hit) {
           active[k] = kInvalidId;  // reached the light
@@ -115,7 +116,8 @@ void trace_visibility_segments(const KernelContext& ctx, StageQueues& q, KernelC
 
 }  // namespace
 
-void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters) {
+void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q,
+                    KernelCounters& counters) {
   ShadowQueue& shadow = q.shadow;
   if (shadow.empty()) return;
   trace_visibility_segments(ctx, q, counters);
@@ -123,7 +125,8 @@ void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q, 
   const std::vector<Rgb>& transmittance = shadow.segment_transmittance();
   for (const ShadowConnection& c : shadow.connections()) {
     Rgb gate(1.0f);
-    for (uint32_t k = c.first_segment; k < c.first_segment + c.segment_count; ++k) gate *= transmittance[k];
+    for (uint32_t k = c.first_segment; k < c.first_segment + c.segment_count; ++k)
+      gate *= transmittance[k];
     if (is_black(gate)) continue;
     const bool selector_clear =
         c.selector_segment < 0 || !is_black(transmittance[static_cast<size_t>(c.selector_segment)]);

@@ -19,29 +19,34 @@ enum SneeCounter : int {
 
 // The medium vertex x_i is the path's newest vertex (x_j of its memory): medium_event already
 // pushed it and advanced the event counter past it.
-uint32_t vertex_event(const PathState& state, uint32_t s) { return state.event[s] - 1; }
+uint32_t vertex_event(const PathState& state, uint32_t s) {
+  return state.event[s] - 1;
+}
 
-RandomBlock draw_at_vertex(const KernelContext& ctx, const PathState& state, uint32_t s, RngPurpose purpose) {
+RandomBlock draw_at_vertex(const KernelContext& ctx, const PathState& state, uint32_t s,
+                           RngPurpose purpose) {
   return random_block(ctx.seed, state.pixel[s], state.sample[s], vertex_event(state, s), purpose);
 }
 
 void add_candidate(const SneeCandidate& c, uint32_t slot, Rgb throughput, ShadowQueue& shadow) {
   const uint32_t first = static_cast<uint32_t>(shadow.segment_count());
-  for (const ShadowSegment& seg : c.segments) shadow.add_segment(seg.origin, seg.direction, seg.t_max, kVisibilityOnly);
-  shadow.add_connection({slot, first, static_cast<uint32_t>(c.segments.size()), -1, throughput * c.contribution,
-                         Rgb(0.0f)});
+  for (const ShadowSegment& seg : c.segments)
+    shadow.add_segment(seg.origin, seg.direction, seg.t_max, kVisibilityOnly);
+  shadow.add_connection({slot, first, static_cast<uint32_t>(c.segments.size()), -1,
+                         throughput * c.contribution, Rgb(0.0f)});
 }
 
 }  // namespace
 
-void snee_probe_and_subdivide(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters) {
+void snee_probe_and_subdivide(const KernelContext& ctx, PathState& state, StageQueues& q,
+                              KernelCounters& counters) {
   RayBatch& rays = q.rays;
   rays.clear();
   for (const uint32_t s : q.probe) {
     const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
     const RandomBlock r = draw_at_vertex(ctx, state, s, RngPurpose::kSneeProbe);
-    const Vec3 w = probe_direction_sample(ctx.snee.probe, {state.wjn_x[s], state.wjn_y[s], state.wjn_z[s]}, m.g,
-                                          {r.u[0], r.u[1]});
+    const Vec3 w = probe_direction_sample(
+        ctx.snee.probe, {state.wjn_x[s], state.wjn_y[s], state.wjn_z[s]}, m.g, {r.u[0], r.u[1]});
     rays.push(state.vertex_j(s), w, 0.0f, kInfinity);
   }
   ctx.embree->intersect(rays.rays(), rays.hits(), static_cast<unsigned>(rays.size()), false);
@@ -62,7 +67,8 @@ void snee_probe_and_subdivide(const KernelContext& ctx, PathState& state, StageQ
     const Vec3 x_k = rays.origin(i) + rays.direction(i) * rays.tfar(i);
     const Vec3 n_k = ctx.embree->normal(geom, rays.prim(i), x_k);
     if (dot(rays.direction(i), n_k) <= 0) {
-      ++counters.snee[kProbeMissedBoundary];  // reached the boundary from outside: not the medium's exit
+      ++counters.snee[kProbeMissedBoundary];  // reached the boundary from outside: not the medium's
+                                              // exit
       continue;
     }
     const MediumInfo& m = ctx.media[static_cast<size_t>(medium)];
@@ -74,8 +80,10 @@ void snee_probe_and_subdivide(const KernelContext& ctx, PathState& state, StageQ
     if (ctx.snee.enabled.contains(Strategy::kTopToBottom)) {
       const RandomBlock a = draw_at_vertex(ctx, state, s, RngPurpose::kSneeTopToBottom);
       const RandomBlock b = draw_at_vertex(ctx, state, s, RngPurpose::kSneeTopToBottomDistance);
-      const std::array<float, kTopToBottomDimensions> u = {a.u[0], a.u[1], a.u[2], a.u[3], b.u[0], b.u[1], b.u[2], b.u[3]};
-      const SneeCandidate c = sample_top_to_bottom(origin, snee_medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, u);
+      const std::array<float, kTopToBottomDimensions> u = {a.u[0], a.u[1], a.u[2], a.u[3],
+                                                           b.u[0], b.u[1], b.u[2], b.u[3]};
+      const SneeCandidate c =
+          sample_top_to_bottom(origin, snee_medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, u);
       if (c.valid && !is_black(c.contribution)) {
         add_candidate(c, s, beta, q.shadow);
         ++counters.snee[kTopToBottomCandidates];
@@ -86,8 +94,10 @@ void snee_probe_and_subdivide(const KernelContext& ctx, PathState& state, StageQ
     if (ctx.snee.enabled.contains(Strategy::kBottomToTop)) {
       const RandomBlock a = draw_at_vertex(ctx, state, s, RngPurpose::kSneeBottomToTop);
       const RandomBlock b = draw_at_vertex(ctx, state, s, RngPurpose::kSneeBottomToTopBtdf);
-      const std::array<float, kBottomToTopDimensions> u = {a.u[0], a.u[1], a.u[2], a.u[3], b.u[0], b.u[1]};
-      const SneeCandidate c = sample_bottom_to_top(origin, snee_medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, u);
+      const std::array<float, kBottomToTopDimensions> u = {a.u[0], a.u[1], a.u[2],
+                                                           a.u[3], b.u[0], b.u[1]};
+      const SneeCandidate c =
+          sample_bottom_to_top(origin, snee_medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, u);
       if (c.valid && !is_black(c.contribution)) {
         add_candidate(c, s, beta, q.shadow);
         ++counters.snee[kBottomToTopCandidates];

@@ -32,10 +32,12 @@ void extend(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCo
 
 // Free flight inside media: scatter (NEE, SNEE probe, phase sampling -> q.extend) or pass to
 // the surface/escape queues.
-void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters);
+void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
+                  KernelCounters& counters);
 
 // Surface interactions: emission, null crossings, diffuse and dielectric BSDFs with NEE and MIS.
-void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters);
+void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
+                   KernelCounters& counters);
 
 // Environment and distant lights seen by escaped rays; the path is retired.
 void shade_escaped(const KernelContext& ctx, PathState& state, StageQueues& q);
@@ -45,6 +47,7 @@ void snee_probe_and_subdivide(const KernelContext& ctx, PathState& state, StageQ
                               KernelCounters& counters);
 
 // Resolves every pending light connection in batches and adds the visible ones' radiance.
-void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCounters& counters);
+void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q,
+                    KernelCounters& counters);
 
 }  // namespace snee

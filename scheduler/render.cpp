@@ -1,11 +1,11 @@
 #include "scheduler/render.h"
 
+#include <pmmintrin.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <xmmintrin.h>
-#include <pmmintrin.h>
 
 #include <algorithm>
 #include <atomic>
@@ -24,8 +24,9 @@ const char* ray_kind_name(RayKind k) {
 }
 
 const char* stage_name(Stage s) {
-  static const char* names[] = {"generate",   "extend",      "medium_event",   "shade_surface", "shade_escaped",
-                                "snee_probe", "subdivision", "shadow_connect", "retire"};
+  static const char* names[] = {"generate",      "extend",         "medium_event",
+                                "shade_surface", "shade_escaped",  "snee_probe",
+                                "subdivision",   "shadow_connect", "retire"};
   return names[static_cast<int>(s)];
 }
 
@@ -55,23 +56,27 @@ void set_flush_to_zero() {
 
 }  // namespace
 
-RenderResult render(const Scene& scene, const RenderOptions& options, const ProgressCallback& progress) {
+RenderResult render(const Scene& scene, const RenderOptions& options,
+                    const ProgressCallback& progress) {
   validate(scene, options);
   const Integrator integrator = parse_integrator(options.integrator);
   const auto start = std::chrono::steady_clock::now();
   set_flush_to_zero();
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-  tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
+  tbb::global_control thread_limit(tbb::global_control::max_allowed_parallelism,
+                                   static_cast<size_t>(threads));
   tbb::task_arena arena(threads);
 
   const EmbreeScene embree(scene);
   const LightTable lights(scene);
-  const KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth, SneeOptions{});
+  const KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
+                          SneeOptions{});
 
   const int width = scene.camera.width, height = scene.camera.height, ts = options.tile_size;
   std::vector<WorkUnit> tiles;
   for (int y = 0; y < height; y += ts) {
-    for (int x = 0; x < width; x += ts) tiles.push_back({x, y, std::min(x + ts, width), std::min(y + ts, height), 0, 0});
+    for (int x = 0; x < width; x += ts)
+      tiles.push_back({x, y, std::min(x + ts, width), std::min(y + ts, height), 0, 0});
   }
   // A pass renders a block of sample indices for every pixel; its units are tiles times
   // sample chunks. How the block is cut into units never changes the image: every sample is a
@@ -79,14 +84,16 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Prog
   const uint32_t spp = static_cast<uint32_t>(options.spp);
   const uint32_t chunk = static_cast<uint32_t>(options.samples_per_pass);
   const size_t min_units = 8 * static_cast<size_t>(threads);
-  const uint32_t chunks_per_pass = static_cast<uint32_t>(
-      std::clamp<size_t>((min_units + tiles.size() - 1) / tiles.size(), 1, (spp + chunk - 1) / chunk));
+  const uint32_t chunks_per_pass = static_cast<uint32_t>(std::clamp<size_t>(
+      (min_units + tiles.size() - 1) / tiles.size(), 1, (spp + chunk - 1) / chunk));
 
   const size_t pixel_count = static_cast<size_t>(width) * height;
   std::vector<double> sum(pixel_count * 3, 0.0), sum_sq(pixel_count * 3, 0.0);
-  std::vector<Rgb> pass_samples(pixel_count * std::min<size_t>(spp, size_t{chunk} * chunks_per_pass));
+  std::vector<Rgb> pass_samples(pixel_count *
+                                std::min<size_t>(spp, size_t{chunk} * chunks_per_pass));
 
-  tbb::enumerable_thread_specific<UnitWorkspace> workspaces(static_cast<size_t>(options.queue_capacity));
+  tbb::enumerable_thread_specific<UnitWorkspace> workspaces(
+      static_cast<size_t>(options.queue_capacity));
   std::atomic<int64_t> samples_done{0};
   std::atomic<uint64_t> rays_done{0};
   const int64_t samples_total = static_cast<int64_t>(pixel_count) * spp;
@@ -109,9 +116,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Prog
       tbb::parallel_for(size_t{0}, units.size(), [&](size_t i) {
         set_flush_to_zero();
         UnitWorkspace& ws = workspaces.local();
-        const uint64_t rays_before = ws.counters.rays[0] + ws.counters.rays[1] + ws.counters.rays[2] + ws.counters.rays[3];
+        const uint64_t rays_before =
+            ws.counters.rays[0] + ws.counters.rays[1] + ws.counters.rays[2] + ws.counters.rays[3];
         run_work_unit(ctx, units[i], ws, pass_samples.data() + unit_offset[i]);
-        const uint64_t rays_after = ws.counters.rays[0] + ws.counters.rays[1] + ws.counters.rays[2] + ws.counters.rays[3];
+        const uint64_t rays_after =
+            ws.counters.rays[0] + ws.counters.rays[1] + ws.counters.rays[2] + ws.counters.rays[3];
         rays_done += rays_after - rays_before;
         const int64_t done = samples_done += static_cast<int64_t>(units[i].sample_count());
         if (progress) {
@@ -119,8 +128,11 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Prog
           p.samples_done = done;
           p.samples_total = samples_total;
           p.fraction = static_cast<double>(done) / static_cast<double>(samples_total);
-          p.elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-          p.mrays_per_second = p.elapsed_seconds > 0 ? static_cast<double>(rays_done.load()) / p.elapsed_seconds * 1e-6 : 0;
+          p.elapsed_seconds =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          p.mrays_per_second = p.elapsed_seconds > 0 ? static_cast<double>(rays_done.load()) /
+                                                           p.elapsed_seconds * 1e-6
+                                                     : 0;
           progress(p);
         }
       });
@@ -134,7 +146,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Prog
           for (uint32_t s = 0; s < u.sample_end - u.sample_begin; ++s) {
             for (int y = u.y0; y < u.y1; ++y) {
               for (int x = u.x0; x < u.x1; ++x) {
-                const Rgb v = samples[s * static_cast<size_t>(u.pixel_count()) + static_cast<size_t>((y - u.y0) * tile_w + (x - u.x0))];
+                const Rgb v = samples[s * static_cast<size_t>(u.pixel_count()) +
+                                      static_cast<size_t>((y - u.y0) * tile_w + (x - u.x0))];
                 const size_t pixel = static_cast<size_t>(y) * width + x;
                 for (int c = 0; c < 3; ++c) {
                   sum[3 * pixel + c] += v[c];
@@ -158,7 +171,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Prog
   for (size_t p = 0; p < pixel_count; ++p) {
     for (int c = 0; c < 3; ++c) {
       const double mean = sum[3 * p + c] / n;
-      const double var = spp > 1 ? std::max(0.0, (sum_sq[3 * p + c] - n * mean * mean) / (n - 1)) : 0.0;
+      const double var =
+          spp > 1 ? std::max(0.0, (sum_sq[3 * p + c] - n * mean * mean) / (n - 1)) : 0.0;
       film.mean[p][c] = static_cast<float>(mean);
       film.variance_of_mean[p][c] = static_cast<float>(var / n);
     }
@@ -170,7 +184,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Prog
   KernelCounters counters;
   for (const UnitWorkspace& ws : workspaces) {
     counters.add(ws.counters);
-    for (int i = 0; i < static_cast<int>(Stage::kCount); ++i) stats.stage_seconds[i] += ws.stage_seconds[i];
+    for (int i = 0; i < static_cast<int>(Stage::kCount); ++i)
+      stats.stage_seconds[i] += ws.stage_seconds[i];
   }
   for (int i = 0; i < static_cast<int>(RayKind::kCount); ++i) stats.rays[i] = counters.rays[i];
   stats.paths = counters.paths;

@@ -31,7 +31,7 @@ const char* stage_name(Stage s);
 struct RenderOptions {
   int spp = 64;
   uint32_t seed = 0;
-  int threads = 0;            // 0 = all hardware threads
+  int threads = 0;  // 0 = all hardware threads
   std::string integrator = "pt";
   int max_depth = 1024;
   int queue_capacity = 4096;  // path slots per work unit (batch size of every stage)
@@ -40,8 +40,8 @@ struct RenderOptions {
 };
 
 struct Progress {
-  double fraction = 0;        // 0..1
-  int64_t samples_done = 0;   // pixel samples finished
+  double fraction = 0;       // 0..1
+  int64_t samples_done = 0;  // pixel samples finished
   int64_t samples_total = 0;
   double elapsed_seconds = 0;
   double mrays_per_second = 0;

@@ -12,7 +12,8 @@ template <typename F>
 void timed(UnitWorkspace& ws, Stage stage, F&& f) {
   const auto start = Clock::now();
   f();
-  ws.stage_seconds[static_cast<int>(stage)] += std::chrono::duration<double>(Clock::now() - start).count();
+  ws.stage_seconds[static_cast<int>(stage)] +=
+      std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 }  // namespace
@@ -53,15 +54,19 @@ void run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace
         ++next;
       }
       active += ws.new_slots.size();
-      generate_camera_rays(ctx, state, ws.new_slots.data(), ws.new_pixels.data(), ws.new_samples.data(),
-                           ws.new_slots.size(), q, ws.counters);
+      generate_camera_rays(ctx, state, ws.new_slots.data(), ws.new_pixels.data(),
+                           ws.new_samples.data(), ws.new_slots.size(), q, ws.counters);
     });
     timed(ws, Stage::kExtend, [&] { extend(ctx, state, q, ws.counters); });
-    if (!q.medium.empty()) timed(ws, Stage::kMediumEvent, [&] { medium_event(ctx, state, q, ws.counters); });
-    if (!q.probe.empty()) timed(ws, Stage::kSneeProbe, [&] { snee_probe_and_subdivide(ctx, state, q, ws.counters); });
-    if (!q.surface.empty()) timed(ws, Stage::kShadeSurface, [&] { shade_surface(ctx, state, q, ws.counters); });
+    if (!q.medium.empty())
+      timed(ws, Stage::kMediumEvent, [&] { medium_event(ctx, state, q, ws.counters); });
+    if (!q.probe.empty())
+      timed(ws, Stage::kSneeProbe, [&] { snee_probe_and_subdivide(ctx, state, q, ws.counters); });
+    if (!q.surface.empty())
+      timed(ws, Stage::kShadeSurface, [&] { shade_surface(ctx, state, q, ws.counters); });
     if (!q.escaped.empty()) timed(ws, Stage::kShadeEscaped, [&] { shade_escaped(ctx, state, q); });
-    if (!q.shadow.empty()) timed(ws, Stage::kShadowConnect, [&] { shadow_connect(ctx, state, q, ws.counters); });
+    if (!q.shadow.empty())
+      timed(ws, Stage::kShadowConnect, [&] { shadow_connect(ctx, state, q, ws.counters); });
     timed(ws, Stage::kRetire, [&] {
       for (const uint32_t s : q.retire) {
         Rgb l = state.radiance(s);
@@ -73,7 +78,8 @@ void run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace
         const uint32_t pixel = state.pixel[s];
         const int x = static_cast<int>(pixel % static_cast<uint32_t>(ctx.width)) - unit.x0;
         const int y = static_cast<int>(pixel / static_cast<uint32_t>(ctx.width)) - unit.y0;
-        out[(state.sample[s] - unit.sample_begin) * pixels + static_cast<size_t>(y * tile_w + x)] = l;
+        out[(state.sample[s] - unit.sample_begin) * pixels + static_cast<size_t>(y * tile_w + x)] =
+            l;
         ws.free_slots.push_back(s);
       }
       active -= q.retire.size();

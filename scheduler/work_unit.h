@@ -15,10 +15,12 @@
 namespace snee {
 
 struct WorkUnit {
-  int x0, y0, x1, y1;           // pixel rectangle [x0, x1) x [y0, y1)
+  int x0, y0, x1, y1;  // pixel rectangle [x0, x1) x [y0, y1)
   uint32_t sample_begin, sample_end;
   int pixel_count() const { return (x1 - x0) * (y1 - y0); }
-  size_t sample_count() const { return static_cast<size_t>(pixel_count()) * (sample_end - sample_begin); }
+  size_t sample_count() const {
+    return static_cast<size_t>(pixel_count()) * (sample_end - sample_begin);
+  }
 };
 
 // Per-thread state reused by every unit the thread runs.

@@ -50,7 +50,8 @@ std::string case_name(const ::testing::TestParamInfo<FurnaceCase>& p) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, Furnace,
-                         ::testing::Values(FurnaceCase{"furnace-sphere", "pt"}, FurnaceCase{"furnace-bunny", "pt"},
+                         ::testing::Values(FurnaceCase{"furnace-sphere", "pt"},
+                                           FurnaceCase{"furnace-bunny", "pt"},
                                            FurnaceCase{"furnace-sphere-null", "pt"}),
                          case_name);
 

@@ -275,7 +275,8 @@ float LightTable::escaped_pdf_of(int light, Vec3 d) const {
     case LightKind::kEnvMap: {
       const EnvMap& env = envs_[env_of_light_[light]];
       const Vec3 m = env.to_map.vector(d);
-      const float sin_theta = safe_sqrt(1.0f - m.y * m.y);
+      // Not sqrt(1 - y^2): near the poles y rounds to 1 while x and z still resolve the angle.
+      const float sin_theta = std::hypot(m.x, m.z);
       if (sin_theta == 0) return 0.0f;
       // (u,v) -> direction stretches by 2 pi in phi and pi in theta, times sin(theta).
       return env.distribution.pdf(map_direction_to_uv(m)) / (2.0f * kPi * kPi * sin_theta);

@@ -70,7 +70,8 @@ SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
   // Only distant lights (directional, cone, environment): the tracer reaches area and point
   // lights with its own two-way weights, which SNEE's exit weights do not see (the emission of
   // an area light hit after the exit is weighted where the path's vertex memory has moved on).
-  if (!light.valid || !(light.pdf > 0) || is_black(light.radiance) || std::isfinite(light.distance)) {
+  if (!light.valid || !(light.pdf > 0) || is_black(light.radiance) ||
+      std::isfinite(light.distance)) {
     return {};
   }
   const double cos_o = dot(exit.n_k, light.wi);

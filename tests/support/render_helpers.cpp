@@ -71,7 +71,8 @@ std::vector<bool> sphere_mask(const Scene& scene) {
   return mask;
 }
 
-std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block, int min_pixels) {
+std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block,
+                                      int min_pixels) {
   std::vector<std::vector<bool>> out;
   for (int by = 0; by < film.height; by += block) {
     for (int bx = 0; bx < film.width; bx += block) {

@@ -27,6 +27,7 @@ RegionStats region_mean(const Film& film, const std::vector<bool>& mask);
 std::vector<bool> sphere_mask(const Scene& scene);
 // Square blocks of `block` pixels intersected with a mask (blocks with fewer than min_pixels
 // masked pixels are dropped).
-std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block, int min_pixels);
+std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block,
+                                      int min_pixels);
 
 }  // namespace snee::test

@@ -6,7 +6,8 @@
 namespace snee::test {
 
 double MeanEstimator::standard_error() const {
-  return n_ > 1 ? std::sqrt(variance() / static_cast<double>(n_)) : std::numeric_limits<double>::infinity();
+  return n_ > 1 ? std::sqrt(variance() / static_cast<double>(n_))
+                : std::numeric_limits<double>::infinity();
 }
 
 double z_score(double a, double se_a, double b, double se_b) {
