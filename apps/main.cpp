@@ -6,7 +6,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "apps/bench_command.h"
 #include "apps/render_command.h"
+#include "apps/scale_command.h"
 #include "apps/scenes_command.h"
 #include "scene/scene_loader.h"
 
@@ -19,6 +21,8 @@ int main(int argc, char** argv) {
   });
   const snee::RenderCommand render(app);
   const snee::ScenesCommand scenes(app);
+  const snee::BenchCommand bench(app);
+  const snee::ScaleCommand scale(app);
 
   try {
     app.parse(argc, argv);
@@ -26,6 +30,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   try {
+    if (bench.selected()) return bench.run();
+    if (scale.selected()) return scale.run();
     return render.selected() ? render.run() : scenes.run();
   } catch (const snee::SceneError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

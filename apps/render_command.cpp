@@ -94,7 +94,51 @@ RenderCommand::RenderCommand(CLI::App& parent)
                "Samples each work unit takes per pixel in one pass")
       ->check(integer_at_least(1))
       ->capture_default_str();
+  c.add_option("--schedule", options_.schedule,
+               "megakernel (one path at a time, the comparison twin), local (wavefront per work "
+               "unit) or global (each stage over many units)")
+      ->check(CLI::IsMember({"megakernel", "local", "global"}))
+      ->capture_default_str();
   c.add_flag("-q,--quiet", quiet_, "No progress output while rendering");
+
+  const std::string snee = "SNEE (docs/snee-implementation.md)";
+  c.add_option("--snee-probe", snee_probe_,
+               "Direction of the exit-point probe: uniform (sphere) or phase (HG at x_i)")
+      ->check(CLI::IsMember({"uniform", "phase"}))
+      ->capture_default_str()
+      ->group(snee);
+  c.add_option("--snee-distance-mix", options_.snee.c_exponential,
+               "Probability that top-to-bottom draws the distance by free flight rather than "
+               "equiangularly")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str()
+      ->group(snee);
+  c.add_option("--snee-joint-mix", options_.snee.c_joint,
+               "Probability that bottom-to-top draws the direction from the geometric "
+               "joint-importance lobe rather than the phase function (g != 0 only)")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str()
+      ->group(snee);
+  c.add_option("--snee-heuristic", snee_heuristic_, "Multi-sample MIS heuristic: balance or power")
+      ->check(CLI::IsMember({"balance", "power"}))
+      ->capture_default_str()
+      ->group(snee);
+  c.add_option("--snee-strategies", snee_strategies_,
+               "Comma-separated strategies that share the transport SNEE handles: tb "
+               "(top-to-bottom), bt (bottom-to-top), ub (BSDF-sampled exit), ul (light-sampled "
+               "exit); a subset isolates them")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            try {
+              parse_strategy_set(text);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+          },
+          "LIST"))
+      ->capture_default_str()
+      ->group(snee);
 }
 
 int RenderCommand::run() const {
@@ -104,6 +148,11 @@ int RenderCommand::run() const {
   Scene& scene = loaded.scene;
 
   RenderOptions options = options_;
+  options.snee.probe =
+      snee_probe_ == "phase" ? ProbeDirections::kPhaseFunction : ProbeDirections::kUniformSphere;
+  options.snee.heuristic =
+      snee_heuristic_ == "power" ? MisHeuristic::kPower : MisHeuristic::kBalance;
+  options.snee.enabled = parse_strategy_set(snee_strategies_);
   if (!given("--spp")) options.spp = scene.render.spp;
   if (!given("--max-depth")) options.max_depth = scene.render.max_depth;
   if (!given("--seed")) options.seed = scene.render.seed;

@@ -28,6 +28,9 @@ class RenderCommand {
   std::string stats_;
   std::string resolution_;
   bool quiet_ = false;
+  std::string snee_probe_ = "uniform";
+  std::string snee_heuristic_ = "balance";
+  std::string snee_strategies_ = "tb,bt,ub,ul";
 };
 
 }  // namespace snee

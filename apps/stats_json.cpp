@@ -18,6 +18,10 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
   for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
     stages[stage_name(static_cast<Stage>(s))] = stats.stage_seconds[s];
 
+  nlohmann::ordered_json snee = nlohmann::ordered_json::object();
+  for (int c = 0; c < kSneeCounterCount; ++c)
+    snee[snee_counter_name(static_cast<SneeCounter>(c))] = stats.snee[c];
+
   return {
       {"version", SNEE_VERSION},
       {"scene", scene},
@@ -30,12 +34,21 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"queue_capacity", options.queue_capacity},
       {"tile_size", options.tile_size},
       {"samples_per_pass", options.samples_per_pass},
+      {"schedule", options.schedule},
       {"seconds", stats.seconds},
       {"stage_seconds", stages},
       {"rays", rays},
       {"paths", stats.paths},
       {"mrays_per_second", stats.mrays_per_second()},
       {"path_state_bytes_per_slot", stats.path_state_bytes_per_slot},
+      {"queue_occupancy", stats.queue_occupancy},
+      {"snee_options",
+       {{"probe", options.snee.probe == ProbeDirections::kPhaseFunction ? "phase" : "uniform"},
+        {"distance_mix", options.snee.c_exponential},
+        {"joint_mix", options.snee.c_joint},
+        {"heuristic", options.snee.heuristic == MisHeuristic::kPower ? "power" : "balance"},
+        {"strategies", strategy_set_name(options.snee.enabled)}}},
+      {"snee", snee},
   };
 }
 

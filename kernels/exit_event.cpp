@@ -90,8 +90,8 @@ void defer_bsdf_exit(const KernelContext& ctx, PathState& state, uint32_t slot,
       offset_origin(exit.x_k, exit.n_k, omega_o, ctx.epsilon), omega_o, kInfinity, kVisibilityOnly);
   const uint32_t selector =
       shadow.add_segment(exit.x_i, exit.first_hit_direction, exit.first_hit_tmax, kVisibilityOnly);
-  shadow.add_connection({slot, escape, 1, static_cast<int32_t>(selector), unweighted * w_first,
-                         unweighted * w_not_first});
+  shadow.add_connection({ConnectionKind::kLight, slot, escape, 1, static_cast<int32_t>(selector),
+                         unweighted * w_first, unweighted * w_not_first});
 }
 
 }  // namespace snee

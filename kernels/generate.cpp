@@ -1,4 +1,8 @@
-#include "kernels/path_ops.h"
+#include <algorithm>
+
+#include "kernels/simd/camera_batch.h"
+#include "kernels/simd/philox_batch.h"
+#include "kernels/simd/slot_chunk.h"
 #include "kernels/stages.h"
 
 namespace snee {
@@ -9,36 +13,46 @@ StageQueues::StageQueues(size_t slots)
       surface(slots),
       escaped(slots),
       probe(slots),
+      subdivide(slots),
       retire(slots),
       rays(slots),
       shadow(slots * 8) {}
 
+// Batched: each lane computes exactly what random_block and camera_direction compute for its
+// slot (tests/test_camera_batch.cpp), so images do not depend on the batch width.
 void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint32_t* slots,
                           const uint32_t* pixels, const uint32_t* samples, size_t n, StageQueues& q,
                           KernelCounters& counters) {
-  const float inv_w = 1.0f / static_cast<float>(ctx.width);
-  const float inv_h = 1.0f / static_cast<float>(ctx.height);
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t s = slots[i];
-    state.pixel[s] = pixels[i];
-    state.sample[s] = samples[i];
-    state.event[s] = 0;
-    state.depth[s] = 0;
-    state.flags[s] = 0;
-    state.medium[s] = -1;
-    state.set_throughput(s, Rgb(1.0f));
-    state.radiance_r[s] = state.radiance_g[s] = state.radiance_b[s] = 0.0f;
-    state.mis_pdf[s] = 0.0f;
-    state.eta_scale[s] = 1.0f;
-    const RandomBlock r = draw(ctx, state, s, RngPurpose::kCamera);
-    const float px = static_cast<float>(pixels[i] % static_cast<uint32_t>(ctx.width));
-    const float py = static_cast<float>(pixels[i] / static_cast<uint32_t>(ctx.width));
-    const float x = 2.0f * (px + r.u[0]) * inv_w - 1.0f;
-    const float y = 1.0f - 2.0f * (py + r.u[1]) * inv_h;
-    const Vec3 d = normalize(ctx.camera_forward + ctx.camera_right * x + ctx.camera_up * y);
-    state.set_ray(s, ctx.camera_origin, d);
-    q.extend.push(s);
+  using simd::FloatBatch;
+  using simd::IntBatch;
+  using simd::UintBatch;
+  const PinholeCamera camera = pinhole_camera(ctx);
+  for (size_t begin = 0; begin < n; begin += simd::kLanes) {
+    const size_t count = std::min(simd::kLanes, n - begin);
+    const simd::SlotChunk chunk(slots + begin, count);
+    const UintBatch pixel = simd::load_padded(pixels + begin, count);
+    const UintBatch sample = simd::load_padded(samples + begin, count);
+    const simd::RandomBlockBatch r =
+        simd::random_block(ctx.seed, pixel, sample, UintBatch(0u), RngPurpose::kCamera);
+    const simd::Vec3Batch d = simd::camera_direction(camera, pixel, r.u[0], r.u[1]);
+    chunk.store(state.pixel, pixel);
+    chunk.store(state.sample, sample);
+    for (uint32_t* field : {state.event, state.depth, state.flags})
+      chunk.store(field, UintBatch(0u));
+    chunk.store(state.medium, IntBatch(-1));
+    for (float* field :
+         {state.throughput_r, state.throughput_g, state.throughput_b, state.eta_scale})
+      chunk.store(field, FloatBatch(1.0f));
+    for (float* field : {state.radiance_r, state.radiance_g, state.radiance_b, state.mis_pdf})
+      chunk.store(field, FloatBatch(0.0f));
+    chunk.store(state.origin_x, FloatBatch(camera.origin.x));
+    chunk.store(state.origin_y, FloatBatch(camera.origin.y));
+    chunk.store(state.origin_z, FloatBatch(camera.origin.z));
+    chunk.store(state.dir_x, d.x);
+    chunk.store(state.dir_y, d.y);
+    chunk.store(state.dir_z, d.z);
   }
+  for (size_t i = 0; i < n; ++i) q.extend.push(slots[i]);
   counters.rays[0] += n;
   counters.paths += n;
 }

@@ -10,6 +10,7 @@
 #include "kernels/bsdf/dielectric.h"
 #include "kernels/lights/light_table.h"
 #include "kernels/snee/snee_options.h"
+#include "kernels/snee_counters.h"
 #include "scene/embree_scene.h"
 #include "scene/scene.h"
 
@@ -46,7 +47,8 @@ struct KernelCounters {
   std::array<uint64_t, 4> rays{};  // camera, extension, shadow, probe
   uint64_t paths = 0;
   uint64_t nonfinite_samples = 0;
-  std::array<uint64_t, 8> snee{};
+  SneeCounters snee{};
+  void count(SneeCounter c, uint64_t n = 1) { snee[static_cast<int>(c)] += n; }
   void add(const KernelCounters& o);
 };
 

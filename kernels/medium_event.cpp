@@ -22,7 +22,7 @@ void medium_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 x, 
   if (is_black(contribution)) return;
   const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
   const uint32_t seg = shadow.add_segment(x, ls.wi, tmax, state.medium[s]);
-  shadow.add_connection({s, seg, 1, -1, contribution, Rgb(0.0f)});
+  shadow.add_connection({ConnectionKind::kLight, s, seg, 1, -1, contribution, Rgb(0.0f)});
 }
 
 }  // namespace

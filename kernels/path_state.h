@@ -115,6 +115,9 @@ struct PathState {
   Vec3 vertex_j(uint32_t s) const {
     return {xj_x[s], xj_y[s], xj_z[s]};
   }
+  Vec3 direction_in_j(uint32_t s) const {
+    return {wjn_x[s], wjn_y[s], wjn_z[s]};
+  }
   // Records a new vertex x (with the propagation direction arriving at it); x_j becomes x_i.
   void push_vertex(uint32_t s, Vec3 x, Vec3 w_arriving, bool medium_vertex) {
     const bool j_was_medium = (flags[s] & kPathMediumVertexJ) != 0;

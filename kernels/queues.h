@@ -49,6 +49,44 @@ class SlotQueue {
   size_t size_ = 0;
 };
 
+// SNEE exit points found by the probe stage, waiting for subdivision: the slot of the medium
+// vertex x_i and the probe's first hit x_k on that medium's dielectric boundary.
+class ExitPointQueue {
+ public:
+  explicit ExitPointQueue(size_t capacity)
+      : slot_(capacity),
+        geom_(capacity),
+        x_(capacity),
+        y_(capacity),
+        z_(capacity),
+        nx_(capacity),
+        ny_(capacity),
+        nz_(capacity) {}
+  void clear() { size_ = 0; }
+  bool empty() const { return size_ == 0; }
+  size_t size() const { return size_; }
+  void push(uint32_t slot, uint32_t geom, Vec3 x_k, Vec3 n_k) {
+    const size_t i = size_++;
+    slot_[i] = slot;
+    geom_[i] = geom;
+    x_[i] = x_k.x;
+    y_[i] = x_k.y;
+    z_[i] = x_k.z;
+    nx_[i] = n_k.x;
+    ny_[i] = n_k.y;
+    nz_[i] = n_k.z;
+  }
+  uint32_t slot(size_t i) const { return slot_[i]; }
+  uint32_t geom(size_t i) const { return geom_[i]; }
+  Vec3 x_k(size_t i) const { return {x_[i], y_[i], z_[i]}; }
+  Vec3 n_k(size_t i) const { return {nx_[i], ny_[i], nz_[i]}; }
+
+ private:
+  AlignedArray<uint32_t> slot_, geom_;
+  AlignedArray<float> x_, y_, z_, nx_, ny_, nz_;
+  size_t size_ = 0;
+};
+
 // Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.
 class RayBatch {
  public:
@@ -83,7 +121,11 @@ inline constexpr int32_t kVisibilityOnly = -2;
 // segments is unoccluded. A SNEE or exit-event connection may also carry a `selector`
 // segment whose visibility does not gate the contribution but picks between two MIS-weighted
 // values (docs/snee.md 3.6: the weight needs V_first(x_i, x_k)).
+// What produced a connection, for the statistics of failed connections.
+enum class ConnectionKind : uint8_t { kLight, kTopToBottom, kBottomToTop };
+
 struct ShadowConnection {
+  ConnectionKind kind;
   uint32_t slot;
   uint32_t first_segment;
   uint32_t segment_count;    // gating segments, stored consecutively from first_segment

@@ -50,19 +50,18 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
     const ExitWeights w = exit_light_sample_weights(ctx, *exit, ls.wi, ls.pdf, ls.delta);
     const uint32_t selector = shadow.add_segment(exit->x_i, exit->first_hit_direction,
                                                  exit->first_hit_tmax, kVisibilityOnly);
-    shadow.add_connection({s, seg, 1, static_cast<int32_t>(selector), unweighted * w.if_first_hit,
-                           unweighted * w.if_not_first_hit});
+    shadow.add_connection({ConnectionKind::kLight, s, seg, 1, static_cast<int32_t>(selector),
+                           unweighted * w.if_first_hit, unweighted * w.if_not_first_hit});
     return;
   }
   const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf_pdf);
-  shadow.add_connection({s, seg, 1, -1, unweighted * weight, Rgb(0.0f)});
+  shadow.add_connection({ConnectionKind::kLight, s, seg, 1, -1, unweighted * weight, Rgb(0.0f)});
 }
 
 }  // namespace
 
 void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
                    KernelCounters& counters) {
-  (void)counters;
   for (const uint32_t s : q.surface) {
     const Vec3 d = state.direction(s);
     const Vec3 p = state.origin(s) + d * state.hit_t[s];
@@ -93,6 +92,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
 
     // The exit-event bookkeeping of SNEE needs the vertices before this one.
     const ExitEvent exit = make_exit_event(ctx, state, s, p, n, info);
+    if (exit.snee_possible) counters.count(SneeCounter::kFourWayExitEvents);
     state.depth[s] += 1;
     state.push_vertex(s, p, d, false);
     if (static_cast<int>(state.depth[s]) > ctx.max_depth) {

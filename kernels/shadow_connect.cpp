@@ -127,7 +127,11 @@ void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q,
     Rgb gate(1.0f);
     for (uint32_t k = c.first_segment; k < c.first_segment + c.segment_count; ++k)
       gate *= transmittance[k];
-    if (is_black(gate)) continue;
+    if (is_black(gate)) {
+      if (c.kind == ConnectionKind::kTopToBottom) counters.count(SneeCounter::kTopToBottomOccluded);
+      if (c.kind == ConnectionKind::kBottomToTop) counters.count(SneeCounter::kBottomToTopOccluded);
+      continue;
+    }
     const bool selector_clear =
         c.selector_segment < 0 || !is_black(transmittance[static_cast<size_t>(c.selector_segment)]);
     state.add_radiance(c.slot, gate * (selector_clear ? c.if_clear : c.if_selector_blocked));

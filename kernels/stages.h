@@ -12,13 +12,14 @@ namespace snee {
 // The queues one work unit cycles through.
 struct StageQueues {
   explicit StageQueues(size_t slots);
-  SlotQueue extend;   // rays to trace
-  SlotQueue medium;   // traced rays travelling inside a medium
-  SlotQueue surface;  // rays that reached a surface
-  SlotQueue escaped;  // rays that left the scene
-  SlotQueue probe;    // SNEE: medium vertices waiting for an exit-point probe
-  SlotQueue retire;   // finished paths
-  RayBatch rays;      // scratch for batched Embree queries
+  SlotQueue extend;          // rays to trace
+  SlotQueue medium;          // traced rays travelling inside a medium
+  SlotQueue surface;         // rays that reached a surface
+  SlotQueue escaped;         // rays that left the scene
+  SlotQueue probe;           // SNEE: medium vertices waiting for an exit-point probe
+  ExitPointQueue subdivide;  // SNEE: probes that found the medium's exit, waiting for x_j
+  SlotQueue retire;          // finished paths
+  RayBatch rays;             // scratch for batched Embree queries
   ShadowQueue shadow;
 };
 
@@ -42,9 +43,15 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
 // Environment and distant lights seen by escaped rays; the path is retired.
 void shade_escaped(const KernelContext& ctx, PathState& state, StageQueues& q);
 
-// SNEE: traces the exit-point probes of q.probe and turns them into subdivision connections.
-void snee_probe_and_subdivide(const KernelContext& ctx, PathState& state, StageQueues& q,
-                              KernelCounters& counters);
+// SNEE exit-point query: traces the probes of q.probe in one batch; those whose first hit is
+// the medium's own dielectric boundary, reached from inside, go on to q.subdivide.
+void snee_probe(const KernelContext& ctx, PathState& state, StageQueues& q,
+                KernelCounters& counters);
+
+// SNEE subdivision: places the middle vertex x_j of every exit point in q.subdivide with the
+// enabled strategies (top-to-bottom, bottom-to-top) and queues their shadow connections.
+void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
+                 KernelCounters& counters);
 
 // Resolves every pending light connection in batches and adds the visible ones' radiance.
 void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q,

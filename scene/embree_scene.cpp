@@ -104,6 +104,27 @@ void EmbreeScene::intersect(const RayArrays& rays, const HitArrays& hits, unsign
   rtcInitIntersectContext(&context);
   context.flags =
       coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  if (n == 1) {
+    // A one-ray batch (the megakernel schedule's every query) is a true single-ray query, not
+    // a stream of length one.
+    RTCRayHit rh{};
+    rh.ray = {rays.org_x[0], rays.org_y[0], rays.org_z[0], rays.tnear[0],
+              rays.dir_x[0], rays.dir_y[0], rays.dir_z[0], rays.time[0],
+              rays.tfar[0],  rays.mask[0],  rays.id[0],    rays.flags[0]};
+    rh.hit.geomID = hits.geom_id[0];
+    rh.hit.instID[0] = hits.inst_id[0];
+    rtcIntersect1(scene_, &context, &rh);
+    rays.tfar[0] = rh.ray.tfar;
+    hits.ng_x[0] = rh.hit.Ng_x;
+    hits.ng_y[0] = rh.hit.Ng_y;
+    hits.ng_z[0] = rh.hit.Ng_z;
+    hits.u[0] = rh.hit.u;
+    hits.v[0] = rh.hit.v;
+    hits.prim_id[0] = rh.hit.primID;
+    hits.geom_id[0] = rh.hit.geomID;
+    hits.inst_id[0] = rh.hit.instID[0];
+    return;
+  }
   RTCRayHitNp np = to_embree(rays, hits);
   rtcIntersectNp(scene_, &context, &np, n);
 }
@@ -113,6 +134,14 @@ void EmbreeScene::occluded(const RayArrays& rays, unsigned n) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  if (n == 1) {
+    RTCRay ray{rays.org_x[0], rays.org_y[0], rays.org_z[0], rays.tnear[0],
+               rays.dir_x[0], rays.dir_y[0], rays.dir_z[0], rays.time[0],
+               rays.tfar[0],  rays.mask[0],  rays.id[0],    rays.flags[0]};
+    rtcOccluded1(scene_, &context, &ray);
+    rays.tfar[0] = ray.tfar;
+    return;
+  }
   RTCRayNp np{rays.org_x, rays.org_y, rays.org_z, rays.tnear, rays.dir_x, rays.dir_y,
               rays.dir_z, rays.time,  rays.tfar,  rays.mask,  rays.id,    rays.flags};
   rtcOccludedNp(scene_, &context, &np, n);

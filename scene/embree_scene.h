@@ -27,6 +27,12 @@ struct HitArrays {
   uint32_t *prim_id, *geom_id, *inst_id;
 };
 
+struct EmbreeThroughput;
+class EmbreeScene;
+// The raw-traversal benchmark (embree_throughput.h) times Embree's own calls on this scene.
+EmbreeThroughput measure_embree_throughput(const Scene& scene, const EmbreeScene& embree,
+                                           size_t rays, int repeats);
+
 class EmbreeScene {
  public:
   explicit EmbreeScene(const Scene& scene);
@@ -35,7 +41,9 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   // Closest hit for n rays; results in tfar (hit distance) and hits.geom_id/prim_id
-  // (kInvalidId on a miss). `coherent` is for camera rays only.
+  // (kInvalidId on a miss). `coherent` is for camera rays only. A batch of one ray goes to
+  // rtcIntersect1 (and rtcOccluded1 below), so the megakernel schedule's one-slot work units
+  // issue true single-ray queries.
   void intersect(const RayArrays& rays, const HitArrays& hits, unsigned n, bool coherent) const;
   // Occlusion for n rays: tfar becomes -inf where something lies in [tnear, tfar].
   void occluded(const RayArrays& rays, unsigned n) const;
@@ -52,6 +60,8 @@ class EmbreeScene {
   Vec3 bounds_max() const { return bounds_max_; }
 
  private:
+  friend EmbreeThroughput measure_embree_throughput(const Scene&, const EmbreeScene&, size_t, int);
+
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   const Scene* description_;

@@ -1,19 +1,20 @@
 #include "scheduler/render.h"
 
-#include <pmmintrin.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
-#include <xmmintrin.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
+#include <ctime>
+#include <memory>
 #include <stdexcept>
 
 #include "kernels/lights/light_table.h"
 #include "scene/embree_scene.h"
+#include "scheduler/pass_schedules.h"
+#include "scheduler/schedule.h"
+#include "scheduler/threading.h"
 #include "scheduler/work_unit.h"
 
 namespace snee {
@@ -41,17 +42,35 @@ namespace {
 void validate(const Scene& scene, const RenderOptions& o) {
   if (o.spp < 1) throw std::invalid_argument("spp must be at least 1");
   if (o.threads < 0) throw std::invalid_argument("threads must be 0 (all) or positive");
-  if (o.max_depth < 1) throw std::invalid_argument("max depth must be at least 1");
+  // Depth 0 is allowed, as in the scene format: paths end at their first hit (camera rays and
+  // directly visible emission only).
+  if (o.max_depth < 0) throw std::invalid_argument("max depth must not be negative");
   if (o.queue_capacity < 16) throw std::invalid_argument("queue capacity must be at least 16");
   if (o.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
   if (o.samples_per_pass < 1) throw std::invalid_argument("samples per pass must be at least 1");
   if (scene.camera.width < 1 || scene.camera.height < 1) throw std::invalid_argument("empty image");
 }
 
-// Embree asks for flush-to-zero and denormals-are-zero in every thread that traces rays.
-void set_flush_to_zero() {
-  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+// A pass holds at least this many units (when the image and spp allow). It is a constant, not
+// a multiple of the thread count, so every thread count runs the same passes: scaling studies
+// then compare equal work with equal barriers.
+constexpr size_t kMinUnitsPerPass = 128;
+// The global schedule keeps this many units per thread in flight.
+constexpr size_t kGlobalLanesPerThread = 8;
+
+double cpu_seconds() {
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+void add_workspace_stats(const UnitWorkspace& ws, KernelCounters& counters, RenderStats& stats,
+                         uint64_t& turns, uint64_t& active_slot_turns) {
+  counters.add(ws.counters);
+  for (int i = 0; i < kStageCount; ++i) {
+    stats.stage_seconds[i] += ws.stage_seconds[i];
+    stats.stage_calls[i] += ws.stage_calls[i];
+  }
+  turns += ws.turns * ws.slots;
+  active_slot_turns += ws.active_slot_turns;
 }
 
 }  // namespace
@@ -60,6 +79,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
                     const ProgressCallback& progress) {
   validate(scene, options);
   const Integrator integrator = parse_integrator(options.integrator);
+  const Schedule schedule = parse_schedule(options.schedule);
   const auto start = std::chrono::steady_clock::now();
   set_flush_to_zero();
   const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
@@ -70,7 +90,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
   const EmbreeScene embree(scene);
   const LightTable lights(scene);
   const KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
-                          SneeOptions{});
+                          options.snee);
+  const auto passes_start = std::chrono::steady_clock::now();
+  const double passes_cpu_start = cpu_seconds();
 
   const int width = scene.camera.width, height = scene.camera.height, ts = options.tile_size;
   std::vector<WorkUnit> tiles;
@@ -83,65 +105,51 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
   // pure function of its pixel and index, and the film adds samples in index order.
   const uint32_t spp = static_cast<uint32_t>(options.spp);
   const uint32_t chunk = static_cast<uint32_t>(options.samples_per_pass);
-  const size_t min_units = 8 * static_cast<size_t>(threads);
   const uint32_t chunks_per_pass = static_cast<uint32_t>(std::clamp<size_t>(
-      (min_units + tiles.size() - 1) / tiles.size(), 1, (spp + chunk - 1) / chunk));
+      (kMinUnitsPerPass + tiles.size() - 1) / tiles.size(), 1, (spp + chunk - 1) / chunk));
 
   const size_t pixel_count = static_cast<size_t>(width) * height;
   std::vector<double> sum(pixel_count * 3, 0.0), sum_sq(pixel_count * 3, 0.0);
   std::vector<Rgb> pass_samples(pixel_count *
                                 std::min<size_t>(spp, size_t{chunk} * chunks_per_pass));
 
-  tbb::enumerable_thread_specific<UnitWorkspace> workspaces(
-      static_cast<size_t>(options.queue_capacity));
-  std::atomic<int64_t> samples_done{0};
-  std::atomic<uint64_t> rays_done{0};
-  const int64_t samples_total = static_cast<int64_t>(pixel_count) * spp;
+  // The megakernel is the same loop over one-slot workspaces: one path at a time per thread.
+  const size_t slots =
+      schedule == Schedule::kMegakernel ? 1 : static_cast<size_t>(options.queue_capacity);
+  ThreadWorkspaces workspaces(slots);
+  std::vector<std::unique_ptr<UnitWorkspace>> lanes;
+  if (schedule == Schedule::kGlobal) {
+    const size_t lane_count =
+        std::min(tiles.size() * chunks_per_pass, kGlobalLanesPerThread * threads);
+    for (size_t i = 0; i < lane_count; ++i) lanes.push_back(std::make_unique<UnitWorkspace>(slots));
+  }
+  UnitProgress unit_progress(progress, static_cast<int64_t>(pixel_count) * spp, start);
 
   for (uint32_t pass_begin = 0; pass_begin < spp; pass_begin += chunk * chunks_per_pass) {
     const uint32_t pass_end = std::min(spp, pass_begin + chunk * chunks_per_pass);
-    std::vector<WorkUnit> units;
-    std::vector<size_t> unit_offset;
+    Pass pass;
     size_t offset = 0;
     for (uint32_t s = pass_begin; s < pass_end; s += chunk) {
       for (WorkUnit u : tiles) {
         u.sample_begin = s;
         u.sample_end = std::min(pass_end, s + chunk);
-        units.push_back(u);
-        unit_offset.push_back(offset);
+        pass.units.push_back(u);
+        pass.offsets.push_back(offset);
         offset += u.sample_count();
       }
     }
     arena.execute([&] {
-      tbb::parallel_for(size_t{0}, units.size(), [&](size_t i) {
-        set_flush_to_zero();
-        UnitWorkspace& ws = workspaces.local();
-        const uint64_t rays_before =
-            ws.counters.rays[0] + ws.counters.rays[1] + ws.counters.rays[2] + ws.counters.rays[3];
-        run_work_unit(ctx, units[i], ws, pass_samples.data() + unit_offset[i]);
-        const uint64_t rays_after =
-            ws.counters.rays[0] + ws.counters.rays[1] + ws.counters.rays[2] + ws.counters.rays[3];
-        rays_done += rays_after - rays_before;
-        const int64_t done = samples_done += static_cast<int64_t>(units[i].sample_count());
-        if (progress) {
-          Progress p;
-          p.samples_done = done;
-          p.samples_total = samples_total;
-          p.fraction = static_cast<double>(done) / static_cast<double>(samples_total);
-          p.elapsed_seconds =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-          p.mrays_per_second = p.elapsed_seconds > 0 ? static_cast<double>(rays_done.load()) /
-                                                           p.elapsed_seconds * 1e-6
-                                                     : 0;
-          progress(p);
-        }
-      });
+      if (schedule == Schedule::kGlobal) {
+        run_pass_breadth_first(ctx, pass, pass_samples.data(), lanes, unit_progress);
+      } else {
+        run_pass_depth_first(ctx, pass, pass_samples.data(), workspaces, unit_progress);
+      }
       // Fold the pass into the film: tiles in parallel, and within a tile its sample chunks in
       // order, so every pixel adds its samples in index order whatever the thread count.
       tbb::parallel_for(size_t{0}, tiles.size(), [&](size_t t) {
-        for (size_t i = t; i < units.size(); i += tiles.size()) {
-          const WorkUnit& u = units[i];
-          const Rgb* samples = pass_samples.data() + unit_offset[i];
+        for (size_t i = t; i < pass.units.size(); i += tiles.size()) {
+          const WorkUnit& u = pass.units[i];
+          const Rgb* samples = pass_samples.data() + pass.offsets[i];
           const int tile_w = u.x1 - u.x0;
           for (uint32_t s = 0; s < u.sample_end - u.sample_begin; ++s) {
             for (int y = u.y0; y < u.y1; ++y) {
@@ -178,18 +186,24 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
     }
   }
   RenderStats& stats = result.stats;
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto end = std::chrono::steady_clock::now();
+  stats.seconds = std::chrono::duration<double>(end - start).count();
+  stats.pass_seconds = std::chrono::duration<double>(end - passes_start).count();
+  stats.pass_cpu_seconds = cpu_seconds() - passes_cpu_start;
   stats.threads = threads;
   stats.path_state_bytes_per_slot = PathState::bytes_per_slot();
   KernelCounters counters;
-  for (const UnitWorkspace& ws : workspaces) {
-    counters.add(ws.counters);
-    for (int i = 0; i < static_cast<int>(Stage::kCount); ++i)
-      stats.stage_seconds[i] += ws.stage_seconds[i];
-  }
+  uint64_t slot_turns = 0, active_slot_turns = 0;
+  for (const UnitWorkspace& ws : workspaces)
+    add_workspace_stats(ws, counters, stats, slot_turns, active_slot_turns);
+  for (const auto& lane : lanes)
+    add_workspace_stats(*lane, counters, stats, slot_turns, active_slot_turns);
+  stats.queue_occupancy =
+      slot_turns > 0 ? static_cast<double>(active_slot_turns) / static_cast<double>(slot_turns) : 0;
   for (int i = 0; i < static_cast<int>(RayKind::kCount); ++i) stats.rays[i] = counters.rays[i];
   stats.paths = counters.paths;
   stats.nonfinite_samples = counters.nonfinite_samples;
+  stats.snee = counters.snee;
   film.meta.spp = options.spp;
   film.meta.integrator = integrator_name(integrator);
   film.meta.seed = options.seed;

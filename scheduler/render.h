@@ -7,6 +7,8 @@
 #include <functional>
 #include <string>
 
+#include "kernels/snee/snee_options.h"
+#include "kernels/snee_counters.h"
 #include "scene/film.h"
 #include "scene/scene.h"
 
@@ -37,6 +39,8 @@ struct RenderOptions {
   int queue_capacity = 4096;  // path slots per work unit (batch size of every stage)
   int tile_size = 16;         // work-unit tile edge in pixels (fixed by image, never by threads)
   int samples_per_pass = 8;   // samples each work unit takes per pixel in one pass
+  std::string schedule = "local";  // "megakernel", "local" or "global" (scheduler/schedule.h)
+  SneeOptions snee;                // open choices of docs/snee.md section 7 (integrator "snee")
 };
 
 struct Progress {
@@ -52,8 +56,13 @@ struct RenderStats {
   double seconds = 0;
   std::array<uint64_t, static_cast<int>(RayKind::kCount)> rays{};
   std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};  // summed over threads
+  std::array<uint64_t, static_cast<int>(Stage::kCount)> stage_calls{};  // stage runs on a unit
+  double pass_seconds = 0;      // wall clock of the sample passes (no scene setup)
+  double pass_cpu_seconds = 0;  // process CPU time over the passes, all threads
+  double queue_occupancy = 0;   // mean over loop turns of the fraction of slots holding a path
   uint64_t paths = 0;
   uint64_t nonfinite_samples = 0;  // dropped (counted, never averaged in)
+  SneeCounters snee{};
   size_t path_state_bytes_per_slot = 0;
   int threads = 0;
   uint64_t total_rays() const;

@@ -1,10 +1,11 @@
-// A work unit is a tile of pixels times a range of sample indices. It is run to completion by
-// one thread through the stage loop of the local wavefront, with its path state and queues in
-// a per-thread workspace, so nothing in the loop is shared or atomic.
+// A work unit is a tile of pixels times a range of sample indices. Its paths live in a
+// workspace (path state and queues of a fixed number of slots) and advance by turns of the
+// stage loop; how turns of different units interleave is the schedule's business, never the
+// image's: every stage works slot by slot, so a path's arithmetic is the same in any company.
 #pragma once
 
 #include <array>
-#include <chrono>
+#include <cstdint>
 #include <vector>
 
 #include "kernels/kernel_context.h"
@@ -23,19 +24,50 @@ struct WorkUnit {
   }
 };
 
-// Per-thread state reused by every unit the thread runs.
+inline constexpr int kStageCount = static_cast<int>(Stage::kCount);
+
+// One turn of the stage loop, in order.
+inline constexpr std::array<Stage, 9> kStageLoop = {
+    Stage::kGenerate,     Stage::kExtend,        Stage::kMediumEvent,
+    Stage::kSneeProbe,    Stage::kSubdivision,   Stage::kShadeSurface,
+    Stage::kShadeEscaped, Stage::kShadowConnect, Stage::kRetire};
+
+// Path state, queues and statistics of `slots` path slots, reused by every unit run in it.
 struct UnitWorkspace {
   explicit UnitWorkspace(size_t slots);
+  size_t slots;  // PathState pads its arrays; only these slots hold paths
   PathState state;
   StageQueues queues;
   std::vector<uint32_t> free_slots;
   std::vector<uint32_t> new_slots, new_pixels, new_samples;
+
+  // The unit in progress.
+  const WorkUnit* unit = nullptr;
+  Rgb* out = nullptr;
+  size_t next_sample = 0;  // samples of the unit started so far
+  size_t active = 0;       // slots holding a path
+  uint64_t rays_at_start = 0;
+
   KernelCounters counters;
-  std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};
+  std::array<double, kStageCount> stage_seconds{};
+  std::array<uint64_t, kStageCount> stage_calls{};
+  uint64_t turns = 0;
+  uint64_t active_slot_turns = 0;  // sum over turns of `active` after the refill
+  // Reading the clock costs about as much as a one-slot stage, so small workspaces time one
+  // turn in `timing_period` and scale it up; large ones time every turn.
+  uint32_t timing_period;
+  bool timing_turn = false;
 };
 
-// Runs the unit; writes each finished sample's radiance to
+// Makes `unit` the workspace's current unit; its samples go to
 // out[(sample - sample_begin) * pixel_count + local_pixel].
+void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws);
+bool work_unit_finished(const UnitWorkspace& ws);
+// Runs one stage of the current unit's loop; a stage whose input queue is empty is skipped.
+void run_stage(const KernelContext& ctx, Stage stage, UnitWorkspace& ws);
+// Runs a unit to completion, turn after turn.
 void run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace& ws, Rgb* out);
+
+uint64_t rays_traced(const KernelCounters& counters);
 
 }  // namespace snee

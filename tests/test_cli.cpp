@@ -68,9 +68,10 @@ bool contains(const std::string& text, const std::string& part) {
 TEST_F(CliTest, RenderHelpListsEveryOption) {
   const Outcome run = snee("render --help");
   EXPECT_EQ(run.exit_code, 0) << run.output;
-  for (const char* option : {"SCENE", "builtin:", "--spp", "--threads", "--seed", "--integrator",
-                             "-o", "--output", "--stats", "--resolution", "--max-depth",
-                             "--queue-capacity", "--tile-size", "--samples-per-pass", "--quiet"})
+  for (const char* option :
+       {"SCENE", "builtin:", "--spp", "--threads", "--seed", "--integrator", "-o", "--output",
+        "--stats", "--resolution", "--max-depth", "--queue-capacity", "--tile-size",
+        "--samples-per-pass", "--schedule", "--quiet"})
     EXPECT_TRUE(contains(run.output, option)) << option << " missing from:\n" << run.output;
 }
 
@@ -155,9 +156,9 @@ TEST_F(CliTest, TinyRenderWritesExrPngAndStats) {
   EXPECT_TRUE(fs::is_regular_file(path("out/a.png")));
 
   const auto stats = nlohmann::json::parse(read_file(path("s.json")));
-  for (const char* key :
-       {"version", "scene", "integrator", "spp", "seed", "threads", "resolution", "seconds",
-        "stage_seconds", "rays", "paths", "mrays_per_second", "path_state_bytes_per_slot"})
+  for (const char* key : {"version", "scene", "integrator", "spp", "seed", "threads", "resolution",
+                          "seconds", "stage_seconds", "rays", "paths", "mrays_per_second",
+                          "path_state_bytes_per_slot", "schedule", "queue_occupancy"})
     EXPECT_TRUE(stats.contains(key)) << key;
   EXPECT_EQ(stats["spp"], 2);
   EXPECT_EQ(stats["resolution"]["width"], 16);

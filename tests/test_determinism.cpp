@@ -50,7 +50,7 @@ TEST_P(Determinism, ThreadsBatchSizesAndTilesGiveIdenticalBytes) {
   EXPECT_FALSE(identical(reference, render(scene, other_seed).film));
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, Determinism, ::testing::Values("pt"));
+INSTANTIATE_TEST_SUITE_P(Integrators, Determinism, ::testing::Values("pt", "snee", "sla"));
 
 }  // namespace
 }  // namespace snee

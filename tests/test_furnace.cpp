@@ -52,7 +52,10 @@ std::string case_name(const ::testing::TestParamInfo<FurnaceCase>& p) {
 INSTANTIATE_TEST_SUITE_P(Scenes, Furnace,
                          ::testing::Values(FurnaceCase{"furnace-sphere", "pt"},
                                            FurnaceCase{"furnace-bunny", "pt"},
-                                           FurnaceCase{"furnace-sphere-null", "pt"}),
+                                           FurnaceCase{"furnace-sphere-null", "pt"},
+                                           FurnaceCase{"furnace-sphere", "snee"},
+                                           FurnaceCase{"furnace-bunny", "snee"},
+                                           FurnaceCase{"furnace-sphere-null", "snee"}),
                          case_name);
 
 }  // namespace

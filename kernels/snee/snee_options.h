@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace snee {
 
@@ -59,5 +60,11 @@ struct SneeOptions {
   MisHeuristic heuristic = MisHeuristic::kBalance;
   StrategySet enabled = StrategySet::all();
 };
+
+// Parses a comma-separated list of tb, bt, ub, ul (e.g. "tb,bt"); throws std::invalid_argument
+// naming the offending item, or for an empty list.
+StrategySet parse_strategy_set(const std::string& list);
+// The inverse: "tb,bt,ub,ul" order.
+std::string strategy_set_name(StrategySet set);
 
 }  // namespace snee

@@ -12,6 +12,12 @@ namespace snee {
 
 namespace {
 
+SneeCandidate failed(SneeFailure why) {
+  SneeCandidate c;
+  c.failure = why;
+  return c;
+}
+
 SneeSuffix make_suffix(const SneeOrigin& origin, const SneeMedium& medium, const ExitPoint& exit,
                        Vec3 x_j, Vec3 omega_o, float light_pdf, bool light_delta) {
   SneeSuffix s;
@@ -57,6 +63,7 @@ SneeCandidate finish(Strategy st, const SneeSuffix& s, Rgb emitted, double sampl
   c.pdf = sampling_pdf;
   c.weight = weight;
   c.valid = true;
+  c.failure = SneeFailure::kNone;
   return c;
 }
 
@@ -72,26 +79,26 @@ SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
   // an area light hit after the exit is weighted where the path's vertex memory has moved on).
   if (!light.valid || !(light.pdf > 0) || is_black(light.radiance) ||
       std::isfinite(light.distance)) {
-    return {};
+    return failed(SneeFailure::kNoLight);
   }
   const double cos_o = dot(exit.n_k, light.wi);
-  if (!(cos_o > 0)) return {};
+  if (!(cos_o > 0)) return failed(SneeFailure::kNoLight);
 
   // Inward direction: transmission lobe only, given the light-side direction.
   const Frame frame = Frame::from_normal(exit.n_k);
   const Vec3 local_o = frame.to_local(light.wi);
   Vec3 local_kj;
   if (!dielectric_sample_transmission(exit.interface, local_o, Vec2{u[3], u[4]}, &local_kj)) {
-    return {};
+    return failed(SneeFailure::kRefraction);
   }
   const Vec3 omega_kj = normalize(frame.to_world(local_kj));
   const double cos_kj = -dot(exit.n_k, omega_kj);
-  if (!(cos_kj > 0)) return {};
+  if (!(cos_kj > 0)) return failed(SneeFailure::kRefraction);
 
   const DistanceMixture mixture{medium.sigma_t, options.c_exponential, exit.x_k, omega_kj,
                                 origin.x_i};
   const DistanceSample distance = distance_mixture_sample(mixture, u[5], u[6], u[7]);
-  if (!distance.valid || !(distance.t > 0)) return {};
+  if (!distance.valid || !(distance.t > 0)) return failed(SneeFailure::kZero);
   const Vec3 x_j = exit.x_k + distance.t * omega_kj;
 
   const SneeSuffix s = make_suffix(origin, medium, exit, x_j, light.wi, light.pdf, light.delta);
@@ -124,25 +131,26 @@ SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
                                    std::span<const float, kBottomToTopDimensions> u) {
   const JointImportance jis{origin.x_i, origin.omega_in, exit.x_k, medium.g, options.c_joint};
   const JointImportanceSample placed = joint_importance_sample(jis, u.first<4>());
-  if (!placed.valid) return {};
+  if (!placed.valid) return failed(SneeFailure::kPlacement);
   const Vec3 x_j = placed.x_j;
   const Vec3 to_k = exit.x_k - x_j;
   const float r_jk = length(to_k);
-  if (!(r_jk > 0)) return {};
+  if (!(r_jk > 0)) return failed(SneeFailure::kPlacement);
   const Vec3 omega_kj = -to_k / r_jk;
-  if (!(dot(exit.n_k, omega_kj) < 0)) return {};  // x_j must lie on the medium side of x_k
+  // x_j must lie on the medium side of x_k.
+  if (!(dot(exit.n_k, omega_kj) < 0)) return failed(SneeFailure::kPlacement);
 
   // Outward direction: transmission lobe only, given the medium-side direction.
   const Frame frame = Frame::from_normal(exit.n_k);
   const Vec3 local_kj = frame.to_local(omega_kj);
   Vec3 local_o;
   if (!dielectric_sample_transmission(exit.interface, local_kj, Vec2{u[4], u[5]}, &local_o)) {
-    return {};
+    return failed(SneeFailure::kRefraction);
   }
   const Vec3 omega_o = normalize(frame.to_world(local_o));
-  if (!(dot(exit.n_k, omega_o) > 0)) return {};
+  if (!(dot(exit.n_k, omega_o) > 0)) return failed(SneeFailure::kRefraction);
   const Rgb emitted = lights.escaped_radiance(omega_o);
-  if (is_black(emitted)) return {};
+  if (is_black(emitted)) return failed(SneeFailure::kNoLight);
 
   const SneeSuffix s =
       make_suffix(origin, medium, exit, x_j, omega_o, lights.escaped_pdf(omega_o), false);

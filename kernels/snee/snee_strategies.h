@@ -37,6 +37,15 @@ struct ShadowSegment {
   float t_max = 0;
 };
 
+// Why a strategy produced nothing (for statistics; every failure is a pdf-0 event, no bias).
+enum class SneeFailure : uint8_t {
+  kNone,
+  kNoLight,     // no usable light direction (not distant, below the horizon, sees no light)
+  kRefraction,  // the transmission-only BTDF sample failed (TIR or wrong side)
+  kPlacement,   // the middle vertex lies on the wrong side of the exit point
+  kZero,        // invalid distance, zero pdf, or zero / non-finite contribution
+};
+
 struct SneeCandidate {
   Vec3 x_j;      // sampled middle vertex (medium point)
   Vec3 omega_o;  // direction from x_k toward the light
@@ -47,6 +56,7 @@ struct SneeCandidate {
   double pdf = 0;          // p_s as computed while sampling, in the suffix's measure
   double weight = 0;       // w_s
   bool valid = false;
+  SneeFailure failure = SneeFailure::kZero;
 };
 
 // epsilon: scene-scale offset of ray origins on the boundary, along -n_k for segments inside the

@@ -1,0 +1,35 @@
+// What `snee bench` reports for one workload: the measured runs (schedule x threads) with the
+// figures derived from them, as a table for people and as JSON for scripts and CI.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "apps/bench_workloads.h"
+#include "apps/measure_render.h"
+#include "scene/embree_throughput.h"
+
+namespace snee {
+
+struct BenchRun {
+  std::string schedule;
+  int threads = 0;
+  int queue_capacity = 0;  // path slots per work unit (1 for the megakernel)
+  Measurement measurement;
+};
+
+struct BenchResult {
+  const BenchWorkload* workload = nullptr;
+  int spp = 0;
+  size_t triangles = 0;
+  EmbreeThroughput raw;  // the traversal limit on the same geometry
+  std::vector<BenchRun> runs;
+};
+
+void print_bench_result(std::FILE* out, const BenchResult& result);
+nlohmann::ordered_json bench_result_json(const BenchResult& result);
+
+}  // namespace snee

@@ -1,0 +1,53 @@
+// What the SNEE stages count, for the statistics JSON: how often each step of a subdivision
+// connection ran, succeeded or failed, and why it failed.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace snee {
+
+enum class SneeCounter : int {
+  kProbes,                  // exit-point probe rays traced
+  kProbeMissed,             // the probe left the scene (an open boundary)
+  kProbeOtherSurface,       // its first hit was not this medium's dielectric boundary
+  kTopToBottomConnections,  // TB candidates queued for visibility
+  kBottomToTopConnections,  // BT candidates queued for visibility
+  kTopToBottomNoLight,      // TB: no distant light sample above the exit point's horizon
+  kTopToBottomRefraction,   // TB: the inward transmission sample failed (TIR, wrong side)
+  kTopToBottomZero,         // TB: the distance sample or the contribution failed
+  kBottomToTopPlacement,    // BT: the middle vertex fell on the outer side of the exit point
+  kBottomToTopRefraction,   // BT: the outward transmission sample failed (TIR, wrong side)
+  kBottomToTopNoLight,      // BT: the outward direction sees no light
+  kBottomToTopZero,         // BT: zero or non-finite contribution
+  kTopToBottomOccluded,     // TB connections with a blocked segment
+  kBottomToTopOccluded,     // BT connections with a blocked segment
+  kConnectionRays,          // visibility segments of TB and BT connections
+  kFourWayExitEvents,       // exit events of the walk weighted against SNEE (U_B, U_L)
+  kCount
+};
+inline constexpr int kSneeCounterCount = static_cast<int>(SneeCounter::kCount);
+using SneeCounters = std::array<uint64_t, kSneeCounterCount>;
+
+inline const char* snee_counter_name(SneeCounter c) {
+  static const char* names[] = {"probes",
+                                "probe_missed",
+                                "probe_other_surface",
+                                "top_to_bottom_connections",
+                                "bottom_to_top_connections",
+                                "top_to_bottom_no_light",
+                                "top_to_bottom_refraction_failed",
+                                "top_to_bottom_zero",
+                                "bottom_to_top_placement_failed",
+                                "bottom_to_top_refraction_failed",
+                                "bottom_to_top_no_light",
+                                "bottom_to_top_zero",
+                                "top_to_bottom_occluded",
+                                "bottom_to_top_occluded",
+                                "connection_rays",
+                                "four_way_exit_events"};
+  static_assert(sizeof(names) / sizeof(names[0]) == kSneeCounterCount);
+  return names[static_cast<int>(c)];
+}
+
+}  // namespace snee

@@ -1,0 +1,130 @@
+// Smoke tests of the measuring commands, `snee bench --quick` and `snee scale`: they run, and
+// their JSON holds every documented key. Timings are never asserted (CI machines are noisy).
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace snee {
+namespace {
+
+namespace fs = std::filesystem;
+
+class PerfCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("snee_perf_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs `snee ARGS` in the temporary directory; returns the exit code, output in output_.
+  int snee(const std::string& args) {
+    const fs::path log = dir_ / "output.txt";
+    const std::string command = "cd '" + dir_.string() + "' && '" SNEE_BINARY "' " + args + " > '" +
+                                log.string() + "' 2>&1 < /dev/null";
+    const int status = std::system(command.c_str());
+    output_ = read(log);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+  std::string read(const fs::path& path) const {
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
+  nlohmann::json json(const std::string& name) const {
+    return nlohmann::json::parse(read(dir_ / name));
+  }
+
+  fs::path dir_;
+  std::string output_;
+};
+
+void expect_keys(const nlohmann::json& j, std::initializer_list<const char*> keys,
+                 const std::string& where) {
+  for (const char* key : keys) EXPECT_TRUE(j.contains(key)) << where << " lacks " << key;
+}
+
+TEST_F(PerfCli, BenchQuickWritesEveryKey) {
+  ASSERT_EQ(snee("bench --quick --threads 1,2 --json b.json"), 0) << output_;
+  EXPECT_NE(output_.find("megakernel"), std::string::npos) << output_;
+  const nlohmann::json b = json("b.json");
+  expect_keys(b,
+              {"version", "date", "machine", "settings", "path_state_bytes_per_slot",
+               "simd_lane_occupancy", "skipped", "workloads", "memory_vs_spp"},
+              "bench");
+  EXPECT_GT(b["path_state_bytes_per_slot"].get<int>(), 0);
+  ASSERT_GE(b["workloads"].size(), 5u);
+  for (const auto& w : b["workloads"]) {
+    const std::string name = w["name"];
+    expect_keys(w,
+                {"description", "scene", "integrator", "triangles", "resolution", "spp",
+                 "raw_embree", "runs"},
+                name);
+    for (const char* q : {"camera_single", "camera_stream", "closest_single", "closest_stream",
+                          "occlusion_single", "occlusion_stream"})
+      expect_keys(w["raw_embree"]["queries"][q], {"mrays_per_second", "mrays_per_cpu_second"},
+                  name + " " + q);
+    ASSERT_EQ(w["runs"].size(), 6u) << name;  // 3 schedules x 2 thread counts
+    for (const auto& run : w["runs"]) {
+      const std::string where = name + " " + run["schedule"].get<std::string>();
+      expect_keys(
+          run,
+          {"threads", "seconds", "cpu_seconds", "cpu_share", "repeat_seconds", "paths",
+           "paths_per_second", "paths_per_cpu_second", "rays", "mrays_per_second",
+           "mrays_per_cpu_second", "ratio_to_raw_embree", "vs_megakernel", "stages",
+           "queue_capacity", "queue_occupancy", "path_state_bytes_per_slot", "peak_memory_mib"},
+          where);
+      for (const char* kind : {"camera", "extension", "shadow", "probe", "total"})
+        EXPECT_TRUE(run["mrays_per_second"].contains(kind)) << where << " " << kind;
+      expect_keys(run["stages"]["extend"], {"seconds", "calls", "share_of_thread_time"}, where);
+      EXPECT_GT(run["paths"].get<uint64_t>(), 0u) << where;
+    }
+  }
+  EXPECT_EQ(b["memory_vs_spp"]["runs"].size(), 2u);
+}
+
+TEST_F(PerfCli, BenchRejectsBadThreadLists) {
+  EXPECT_NE(snee("bench --quick --threads 0"), 0) << output_;
+  EXPECT_NE(snee("bench --quick --threads 1,,2"), 0) << output_;
+}
+
+TEST_F(PerfCli, ScaleWritesJsonAndPlot) {
+  ASSERT_EQ(snee("scale builtin:sphere-cone-r0.04 --threads 1,2 --repeats 1 --resolution 16x16 "
+                 "--spp 1 --json s.json --plot s.svg"),
+            0)
+      << output_;
+  const nlohmann::json s = json("s.json");
+  expect_keys(s,
+              {"version", "scene", "integrator", "schedule", "spp", "resolution", "repeats",
+               "hardware_threads", "results"},
+              "scale");
+  ASSERT_EQ(s["results"].size(), 2u);
+  for (const auto& r : s["results"]) {
+    expect_keys(
+        r,
+        {"threads", "seconds", "repeat_seconds", "cpu_seconds", "cpu_share", "paths",
+         "paths_per_second", "mrays_per_second", "speedup", "efficiency", "peak_memory_mib"},
+        "scale result");
+  }
+  EXPECT_EQ(s["results"][0]["threads"], 1);
+  EXPECT_DOUBLE_EQ(s["results"][0]["speedup"].get<double>(), 1.0);
+  const std::string svg = read(dir_ / "s.svg");
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u) << svg.substr(0, 80);
+  EXPECT_NE(svg.find("</svg>"), std::string::npos);
+  EXPECT_NE(svg.find("parallel efficiency"), std::string::npos);
+  EXPECT_NE(svg.find("ideal"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace snee
