@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/bench_command.h"
+#include "apps/compare_command.h"
 #include "apps/render_command.h"
 #include "apps/scale_command.h"
 #include "apps/scenes_command.h"
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   const snee::ScenesCommand scenes(app);
   const snee::BenchCommand bench(app);
   const snee::ScaleCommand scale(app);
+  const snee::CompareCommand compare(app);
 
   try {
     app.parse(argc, argv);
@@ -32,6 +34,7 @@ int main(int argc, char** argv) {
   try {
     if (bench.selected()) return bench.run();
     if (scale.selected()) return scale.run();
+    if (compare.selected()) return compare.run();
     return render.selected() ? render.run() : scenes.run();
   } catch (const snee::SceneError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -99,24 +99,27 @@ int ScaleCommand::run() const {
     if (threads[i] < threads[base]) base = i;
   }
   const double base_seconds = measurements[base].median.pass_seconds * threads[base];
+  const double base_cpu_seconds = measurements[base].median.pass_cpu_seconds;
   std::vector<ScalePoint> points;
   nlohmann::ordered_json results = nlohmann::ordered_json::array();
-  std::printf("%7s %10s %10s %10s %6s %11s %8s %10s\n", "threads", "seconds", "min", "max", "cpu%",
-              "paths/s", "speedup", "efficiency");
+  std::printf("%7s %10s %10s %10s %6s %11s %8s %10s %10s\n", "threads", "seconds", "min", "max",
+              "cpu%", "paths/s", "speedup", "efficiency", "cpu-effic");
   for (size_t i = 0; i < threads.size(); ++i) {
     const Measurement& m = measurements[i];
     const RenderStats& s = m.median;
     const double speedup = s.pass_seconds > 0 ? base_seconds / s.pass_seconds : 0;
     const double efficiency = speedup / threads[i];
+    const double work_efficiency =
+        s.pass_cpu_seconds > 0 ? base_cpu_seconds / s.pass_cpu_seconds : 0;
     const double cpu_share =
         s.pass_seconds > 0 ? s.pass_cpu_seconds / (s.pass_seconds * threads[i]) : 0;
     const double paths_per_second =
         s.pass_seconds > 0 ? static_cast<double>(s.paths) / s.pass_seconds : 0;
-    points.push_back({threads[i], speedup, efficiency});
-    std::printf("%7d %10.3f %10.3f %10.3f %5.0f%% %11.0f %7.2fx %9.1f%%\n", threads[i],
+    points.push_back({threads[i], speedup, efficiency, work_efficiency});
+    std::printf("%7d %10.3f %10.3f %10.3f %5.0f%% %11.0f %7.2fx %9.1f%% %9.1f%%\n", threads[i],
                 s.pass_seconds, *std::min_element(m.pass_seconds.begin(), m.pass_seconds.end()),
                 *std::max_element(m.pass_seconds.begin(), m.pass_seconds.end()), 100 * cpu_share,
-                paths_per_second, speedup, 100 * efficiency);
+                paths_per_second, speedup, 100 * efficiency, 100 * work_efficiency);
     results.push_back(
         {{"threads", threads[i]},
          {"seconds", s.pass_seconds},
@@ -130,6 +133,7 @@ int ScaleCommand::run() const {
           s.pass_seconds > 0 ? static_cast<double>(s.total_rays()) / s.pass_seconds * 1e-6 : 0},
          {"speedup", speedup},
          {"efficiency", efficiency},
+         {"work_efficiency", work_efficiency},
          {"peak_memory_mib", m.peak_memory_mib}});
   }
 

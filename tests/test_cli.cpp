@@ -176,5 +176,47 @@ TEST_F(CliTest, DefaultOutputIsNamedAfterTheScene) {
   EXPECT_EQ(read_exr(path("out/furnace-sphere.exr")).width, 8);
 }
 
+TEST_F(CliTest, SneeStatsCountProbesAndConnections) {
+  const Outcome run = snee(
+      "render builtin:sphere-cone-r0.2 --integrator snee --resolution 16x16 --spp 2 --quiet "
+      "--snee-strategies tb,ub,ul -o out/s.exr --stats s.json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto stats = nlohmann::json::parse(read_file(path("s.json")));
+  EXPECT_EQ(stats["snee_options"]["strategies"], "tb,ub,ul");
+  EXPECT_EQ(stats["snee_options"]["probe"], "uniform");
+  const auto& c = stats["snee"];
+  EXPECT_GT(c["probes"].get<uint64_t>(), 0u);
+  EXPECT_EQ(c["probes"], stats["rays"]["probe"]);
+  EXPECT_GT(c["top_to_bottom_connections"].get<uint64_t>(), 0u);
+  EXPECT_EQ(c["bottom_to_top_connections"], 0) << "bt was not enabled";
+  EXPECT_EQ(c["connection_rays"].get<uint64_t>(),
+            3 * c["top_to_bottom_connections"].get<uint64_t>());
+  EXPECT_EQ(snee("render builtin:sphere-cone-r0.2 --snee-strategies tb,xy").exit_code == 0, false);
+}
+
+TEST_F(CliTest, CompareWritesReportSheetAndRenders) {
+  const Outcome run = snee(
+      "compare builtin:sphere-cone-r0.2 --resolution 12x12 --spp 2 --reference-spp 4 -o cmp "
+      "--quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  for (const char* file : {"cmp/pt.exr", "cmp/snee.exr", "cmp/reference.exr", "cmp/compare.json",
+                           "cmp/contact-sheet.png"})
+    EXPECT_TRUE(fs::is_regular_file(path(file))) << file;
+  const auto report = nlohmann::json::parse(read_file(path("cmp/compare.json")));
+  EXPECT_EQ(report["mode"], "equal-spp");
+  ASSERT_EQ(report["integrators"].size(), 2u);
+  EXPECT_EQ(report["integrators"][0]["name"], "pt");
+  EXPECT_EQ(report["integrators"][0]["efficiency_vs_first"], 1.0);
+  for (const auto& entry : report["integrators"]) {
+    EXPECT_EQ(entry["spp"], 2);
+    EXPECT_GT(entry["relative_mse_raw"].get<double>(), 0.0);
+  }
+  // A reference of another size is an error, not a silently wrong report.
+  const Outcome mismatch =
+      snee("compare builtin:sphere-cone-r0.2 --resolution 8x8 --spp 1 --reference cmp/pt.exr");
+  EXPECT_NE(mismatch.exit_code, 0);
+  EXPECT_TRUE(contains(mismatch.output, "reference is 12x12")) << mismatch.output;
+}
+
 }  // namespace
 }  // namespace snee

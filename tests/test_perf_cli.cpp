@@ -111,11 +111,11 @@ TEST_F(PerfCli, ScaleWritesJsonAndPlot) {
               "scale");
   ASSERT_EQ(s["results"].size(), 2u);
   for (const auto& r : s["results"]) {
-    expect_keys(
-        r,
-        {"threads", "seconds", "repeat_seconds", "cpu_seconds", "cpu_share", "paths",
-         "paths_per_second", "mrays_per_second", "speedup", "efficiency", "peak_memory_mib"},
-        "scale result");
+    expect_keys(r,
+                {"threads", "seconds", "repeat_seconds", "cpu_seconds", "cpu_share", "paths",
+                 "paths_per_second", "mrays_per_second", "speedup", "efficiency", "work_efficiency",
+                 "peak_memory_mib"},
+                "scale result");
   }
   EXPECT_EQ(s["results"][0]["threads"], 1);
   EXPECT_DOUBLE_EQ(s["results"][0]["speedup"].get<double>(), 1.0);
