@@ -104,6 +104,10 @@ BenchCommand::BenchCommand(CLI::App& parent)
   c.add_option("--repeats", repeats_, "Renders per measurement; the median is reported")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  c.add_option("--samples-per-pass", samples_per_pass_,
+               "Samples each work unit takes per pixel in one pass (sets the unit size)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   c.add_flag("--quick", quick_,
              "Tiny smoke run (16x16, 1 spp, 1 repeat, no dragon) unless options say otherwise");
   c.add_option("--json", json_, "Also write the results as JSON to this file");
@@ -162,6 +166,7 @@ int BenchCommand::run() const {
         o.integrator = w.integrator;
         o.max_depth = w.max_depth;
         o.schedule = schedule;
+        o.samples_per_pass = samples_per_pass_;
         BenchRun run{schedule, threads,
                      std::string(schedule) == "megakernel" ? 1 : o.queue_capacity,
                      measure_render(w.scene, o, settings.repeats)};
@@ -196,6 +201,8 @@ int BenchCommand::run() const {
           {"resolution",
            {{"width", settings.resolution.width}, {"height", settings.resolution.height}}},
           {"repeats", settings.repeats},
+          {"samples_per_pass", samples_per_pass_},
+          {"queue_capacity", RenderOptions{}.queue_capacity},
           {"quick", quick_},
           {"raw_rays_per_query", settings.raw_rays},
           {"raw_repeats", settings.raw_repeats},

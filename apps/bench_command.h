@@ -7,6 +7,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "scheduler/render.h"
+
 namespace snee {
 
 class BenchCommand {
@@ -23,6 +25,7 @@ class BenchCommand {
   int spp_ = 16;
   std::string resolution_ = "128x128";
   int repeats_ = 3;
+  int samples_per_pass_ = RenderOptions{}.samples_per_pass;
   bool quick_ = false;
   std::string json_;
   std::string dragon_;

@@ -7,30 +7,51 @@ namespace snee {
 
 namespace {
 
-SneeSuffix exit_suffix(const KernelContext& ctx, const ExitEvent& e, Vec3 omega_o, float light_pdf,
-                       bool delta) {
-  const MediumInfo& m = ctx.media[static_cast<size_t>(e.medium)];
+SneeSuffix exit_suffix(const KernelContext& ctx, Vec3 x_i, Vec3 omega_in, Vec3 x_j, Vec3 x_k,
+                       Vec3 n_k, uint32_t geom, Vec3 omega_o, float light_pdf, bool delta,
+                       bool distant) {
+  const SurfaceInfo& surface = ctx.surfaces[geom];
+  const MediumInfo& m = ctx.media[static_cast<size_t>(surface.interior_medium)];
   SneeSuffix s;
-  s.x_i = e.x_i;
-  s.omega_in = e.omega_in;
-  s.x_j = e.x_j;
-  s.x_k = e.x_k;
-  s.n_k = e.n_k;
+  s.x_i = x_i;
+  s.omega_in = omega_in;
+  s.x_j = x_j;
+  s.x_k = x_k;
+  s.n_k = n_k;
   s.omega_o = omega_o;
   s.medium = {m.sigma_s, m.sigma_t, m.g};
-  s.interface = e.interface;
+  s.interface = surface.dielectric;
   s.light_pdf = light_pdf;
   s.light_delta = delta;
+  s.light_distant = distant;
   s.x_i_medium = true;
   s.x_j_medium = true;
   return s;
 }
 
+// Queues `unweighted` times the four-way weight of strategy st, chosen by V_first(x_i, x_k),
+// gated by the segments [first, first + count).
+void queue_weighted(const KernelContext& ctx, Strategy st, SneeSuffix s, uint32_t slot,
+                    Rgb unweighted, uint32_t first, uint32_t count, ShadowQueue& shadow) {
+  s.v_first = true;
+  const float w_first = static_cast<float>(snee_exit_weight(st, s, ctx.snee));
+  s.v_first = false;
+  const float w_not_first = static_cast<float>(snee_exit_weight(st, s, ctx.snee));
+  // V_first as a segment from x_i toward x_k that stops just short of it.
+  const Vec3 to_k = s.x_k - s.x_i;
+  const float dist = length(to_k);
+  const uint32_t selector =
+      shadow.add_segment(s.x_i, to_k / dist, std::max(0.0f, dist - ctx.epsilon), kVisibilityOnly);
+  shadow.add_connection({ConnectionKind::kLight, slot, first, count, static_cast<int32_t>(selector),
+                         unweighted * w_first, unweighted * w_not_first});
+}
+
 }  // namespace
 
 ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
-                          Vec3 n, const SurfaceInfo& info) {
+                          Vec3 n, uint32_t geom) {
   ExitEvent e;
+  const SurfaceInfo& info = ctx.surfaces[geom];
   const Vec3 d = state.direction(slot);
   const bool leaving_medium = dot(d, n) > 0 && state.medium[slot] >= 0 &&
                               info.kind == MaterialKind::kDielectric &&
@@ -51,47 +72,46 @@ ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint
   e.x_j = state.vertex_j(slot);
   e.x_k = p;
   e.n_k = n;
-  e.medium = state.medium[slot];
-  e.interface = info.dielectric;
-  const Vec3 to_k = p - e.x_i;
-  const float dist = length(to_k);
-  e.first_hit_direction = to_k / dist;
-  e.first_hit_tmax = std::max(0.0f, dist - ctx.epsilon);
+  e.geom = geom;
   return e;
 }
 
-ExitWeights exit_light_sample_weights(const KernelContext& ctx, const ExitEvent& exit, Vec3 omega_o,
-                                      float light_pdf, bool delta) {
-  SneeSuffix s = exit_suffix(ctx, exit, omega_o, light_pdf, delta);
-  ExitWeights w;
-  s.v_first = true;
-  w.if_first_hit =
-      static_cast<float>(snee_exit_weight(Strategy::kUnidirectionalLight, s, ctx.snee));
-  s.v_first = false;
-  w.if_not_first_hit =
-      static_cast<float>(snee_exit_weight(Strategy::kUnidirectionalLight, s, ctx.snee));
-  return w;
+void connect_exit_light_sample(const KernelContext& ctx, uint32_t slot, const ExitEvent& exit,
+                               Vec3 omega_o, float light_pdf, bool delta, bool distant,
+                               Rgb unweighted, uint32_t segment, ShadowQueue& shadow) {
+  const SneeSuffix s = exit_suffix(ctx, exit.x_i, exit.omega_in, exit.x_j, exit.x_k, exit.n_k,
+                                   exit.geom, omega_o, light_pdf, delta, distant);
+  queue_weighted(ctx, Strategy::kUnidirectionalLight, s, slot, unweighted, segment, 1, shadow);
 }
 
-void defer_bsdf_exit(const KernelContext& ctx, PathState& state, uint32_t slot,
-                     const ExitEvent& exit, Vec3 omega_o, ShadowQueue& shadow) {
-  state.flags[slot] |= kPathEscapeDeferred;
-  const Rgb le = ctx.lights->escaped_radiance(omega_o);
+void remember_exit(PathState& state, uint32_t slot, const ExitEvent& exit) {
+  state.flags[slot] |= kPathAfterSneeExit;
+  state.exit_geom[slot] = exit.geom;
+  state.exit_xi_x[slot] = exit.x_i.x;
+  state.exit_xi_y[slot] = exit.x_i.y;
+  state.exit_xi_z[slot] = exit.x_i.z;
+  state.exit_win_x[slot] = exit.omega_in.x;
+  state.exit_win_y[slot] = exit.omega_in.y;
+  state.exit_win_z[slot] = exit.omega_in.z;
+  state.exit_nk_x[slot] = exit.n_k.x;
+  state.exit_nk_y[slot] = exit.n_k.y;
+  state.exit_nk_z[slot] = exit.n_k.z;
+}
+
+void connect_exit_emission(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                           Vec3 omega_o, Rgb le, float light_pdf, bool distant,
+                           ShadowQueue& shadow) {
   if (is_black(le)) return;
-  SneeSuffix s = exit_suffix(ctx, exit, omega_o, ctx.lights->escaped_pdf(omega_o), false);
-  s.v_first = true;
-  const float w_first =
-      static_cast<float>(snee_exit_weight(Strategy::kUnidirectionalBsdf, s, ctx.snee));
-  s.v_first = false;
-  const float w_not_first =
-      static_cast<float>(snee_exit_weight(Strategy::kUnidirectionalBsdf, s, ctx.snee));
-  const Rgb unweighted = state.throughput(slot) * le;
-  const uint32_t escape = shadow.add_segment(
-      offset_origin(exit.x_k, exit.n_k, omega_o, ctx.epsilon), omega_o, kInfinity, kVisibilityOnly);
-  const uint32_t selector =
-      shadow.add_segment(exit.x_i, exit.first_hit_direction, exit.first_hit_tmax, kVisibilityOnly);
-  shadow.add_connection({ConnectionKind::kLight, slot, escape, 1, static_cast<int32_t>(selector),
-                         unweighted * w_first, unweighted * w_not_first});
+  // The exit pushed x_k, so the path's memory now holds x_j (as its x_i) and x_k (as its x_j);
+  // null crossings since then push nothing.
+  const SneeSuffix s =
+      exit_suffix(ctx, {state.exit_xi_x[slot], state.exit_xi_y[slot], state.exit_xi_z[slot]},
+                  {state.exit_win_x[slot], state.exit_win_y[slot], state.exit_win_z[slot]},
+                  state.vertex_i(slot), state.vertex_j(slot),
+                  {state.exit_nk_x[slot], state.exit_nk_y[slot], state.exit_nk_z[slot]},
+                  state.exit_geom[slot], omega_o, light_pdf, false, distant);
+  queue_weighted(ctx, Strategy::kUnidirectionalBsdf, s, slot, state.throughput(slot) * le, 0, 0,
+                 shadow);
 }
 
 }  // namespace snee

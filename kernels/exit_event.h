@@ -3,6 +3,11 @@
 // two segments are themselves one of four strategies for the suffix x_i -> x_j -> x_k -> light.
 // Their light contributions then need the four-way MIS weight, whose SNEE pdfs depend on
 // V_first(x_i, x_k); that visibility becomes a `selector` segment of the connection.
+//
+// U_L (a light sample at x_k) is weighted on the spot. U_B (the BSDF-sampled exit direction
+// reaching a light) is only known when the continued ray escapes to a distant light or hits an
+// emitter, after the path's vertex memory has moved on, so the exit remembers x_i (its incoming
+// direction) and the exit surface in the path state until then.
 #pragma once
 
 #include "kernels/kernel_context.h"
@@ -17,30 +22,30 @@ struct ExitEvent {
   // through the boundary; the exit's own light samples would count it twice.
   bool light_handled_elsewhere = false;
   Vec3 x_i, omega_in, x_j, x_k, n_k;
-  int32_t medium = -1;
-  DielectricParams interface;
-  // V_first(x_i, x_k) as a segment from x_i toward x_k that stops just short of it.
-  Vec3 first_hit_direction;
-  float first_hit_tmax = 0;
+  uint32_t geom = 0;  // exit surface (its interface and interior medium)
 };
 
 // Called at a surface vertex before the path's vertex memory is shifted.
 ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
-                          Vec3 n, const SurfaceInfo& info);
+                          Vec3 n, uint32_t geom);
 
-struct ExitWeights {
-  float if_first_hit;      // V_first(x_i, x_k) = 1: four-way weight
-  float if_not_first_hit;  // SNEE cannot produce the path: the tracer's two-way weight
-};
+// U_L: a light sample at the exit point toward omega_o. light_pdf: solid angle at x_k, light
+// selection included (the selection probability alone for delta lights); distant: the light
+// is at infinity. Queues the shadow connection of `segment` (to the light) with the four-way
+// weights.
+void connect_exit_light_sample(const KernelContext& ctx, uint32_t slot, const ExitEvent& exit,
+                               Vec3 omega_o, float light_pdf, bool delta, bool distant,
+                               Rgb unweighted, uint32_t segment, ShadowQueue& shadow);
 
-// U_L: a light sample at the exit point (light pdf includes selection; `delta` for delta lights).
-ExitWeights exit_light_sample_weights(const KernelContext& ctx, const ExitEvent& exit, Vec3 omega_o,
-                                      float light_pdf, bool delta);
+// U_B: the exit sampled a transmission out of the medium; marks the path and remembers the
+// suffix so that the light it reaches next is weighted by connect_exit_emission.
+void remember_exit(PathState& state, uint32_t slot, const ExitEvent& exit);
 
-// U_B: the BSDF-sampled exit direction omega_o may escape to a distant light.
-// Turns that into a connection now (gated by the escape, selected by V_first) and marks the
-// path so shade_escaped does not add the same light again.
-void defer_bsdf_exit(const KernelContext& ctx, PathState& state, uint32_t slot,
-                     const ExitEvent& exit, Vec3 omega_o, ShadowQueue& shadow);
+// U_B, later: the ray continued from a remembered exit and reached emission le along omega_o
+// (an escaped ray: distant lights; an emitter hit: light_pdf is its area pdf seen from x_k).
+// Queues a connection that adds throughput * le with the four-way weight selected by V_first.
+void connect_exit_emission(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                           Vec3 omega_o, Rgb le, float light_pdf, bool distant,
+                           ShadowQueue& shadow);
 
 }  // namespace snee

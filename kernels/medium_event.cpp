@@ -20,8 +20,8 @@ void medium_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 x, 
   const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, phase);
   const Rgb contribution = state.throughput(s) * ls.radiance * (phase * weight / ls.pdf);
   if (is_black(contribution)) return;
-  const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
-  const uint32_t seg = shadow.add_segment(x, ls.wi, tmax, state.medium[s]);
+  const ShadowRay ray = shadow_ray_to_light(ls, x, x);  // medium points are not moved
+  const uint32_t seg = shadow.add_segment(x, ray.direction, ray.t_max, state.medium[s]);
   shadow.add_connection({ConnectionKind::kLight, s, seg, 1, -1, contribution, Rgb(0.0f)});
 }
 
@@ -52,7 +52,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     const float pdf = free_flight_pdf(m.sigma_t, t);
     state.set_throughput(s, state.throughput(s) * m.sigma_s * transmittance(m.sigma_t, t) / pdf);
     state.depth[s] += 1;
-    state.flags[s] &= ~(kPathEscapeDeferred | kPathLightSkipped);
+    state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
     state.push_vertex(s, x, w_before, true);
     if (static_cast<int>(state.depth[s]) >= ctx.max_depth || is_black(state.throughput(s))) {
       q.retire.push(s);

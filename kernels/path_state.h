@@ -15,10 +15,10 @@ namespace snee {
 
 // Flags of a path slot.
 enum PathFlags : uint32_t {
-  kPathMediumVertexJ = 1u << 0,   // the previous vertex x_j was a medium scattering vertex
-  kPathMediumVertexI = 1u << 1,   // the vertex before it, x_i, was a medium scattering vertex
-  kPathEscapeDeferred = 1u << 2,  // a distant light this ray may reach is a pending connection
-  kPathLightSkipped = 1u << 3,    // "sla": any light this ray reaches was counted by NEE
+  kPathMediumVertexJ = 1u << 0,  // the previous vertex x_j was a medium scattering vertex
+  kPathMediumVertexI = 1u << 1,  // the vertex before it, x_i, was a medium scattering vertex
+  kPathAfterSneeExit = 1u << 2,  // the ray left a medium by an exit SNEE competes with
+  kPathLightSkipped = 1u << 3,   // "sla": any light this ray reaches was counted by NEE
 };
 
 // X(type, name): one SoA array per field.
@@ -42,7 +42,11 @@ enum PathFlags : uint32_t {
   X(float, xi_x) X(float, xi_y) X(float, xi_z)     /* SNEE memory: medium vertex x_i */         \
   X(float, win_x) X(float, win_y) X(float, win_z)  /* propagation direction arriving at x_i */  \
   X(float, xj_x) X(float, xj_y) X(float, xj_z)     /* the vertex after it, x_j */               \
-  X(float, wjn_x) X(float, wjn_y) X(float, wjn_z)  /* propagation direction arriving at x_j */
+  X(float, wjn_x) X(float, wjn_y) X(float, wjn_z)  /* propagation direction arriving at x_j */ \
+  X(uint32_t, exit_geom)                           /* SNEE exit memory: the exit surface */    \
+  X(float, exit_xi_x) X(float, exit_xi_y) X(float, exit_xi_z)     /* x_i of the exit's suffix */ \
+  X(float, exit_win_x) X(float, exit_win_y) X(float, exit_win_z)  /* arriving at that x_i */   \
+  X(float, exit_nk_x) X(float, exit_nk_y) X(float, exit_nk_z)     /* normal at the exit x_k */
 // clang-format on
 
 struct PathState {

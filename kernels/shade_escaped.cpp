@@ -1,3 +1,4 @@
+#include "kernels/exit_event.h"
 #include "kernels/path_ops.h"
 #include "kernels/stages.h"
 
@@ -5,10 +6,15 @@ namespace snee {
 
 void shade_escaped(const KernelContext& ctx, PathState& state, StageQueues& q) {
   for (const uint32_t s : q.escaped) {
-    // An exit that SNEE could also have produced was already turned into a deferred
-    // connection with its four-strategy weight (exit_event.h).
-    if ((state.flags[s] & (kPathEscapeDeferred | kPathLightSkipped)) == 0) {
-      const Vec3 d = state.direction(s);
+    const uint32_t flags = state.flags[s];
+    const Vec3 d = state.direction(s);
+    if (flags & kPathLightSkipped) {
+      // "sla": the medium vertices' straight shadow rays already counted this light.
+    } else if (flags & kPathAfterSneeExit) {
+      // An exit that SNEE could also have produced: the four-strategy weight (exit_event.h).
+      connect_exit_emission(ctx, state, s, d, ctx.lights->escaped_radiance(d),
+                            ctx.lights->escaped_pdf(d), true, q.shadow);
+    } else {
       const Rgb le = ctx.lights->escaped_radiance(d);
       if (!is_black(le)) {
         const float pdf = state.mis_pdf[s];

@@ -39,19 +39,15 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
   const Rgb unweighted =
       state.throughput(s) * reflectance * ls.radiance * (f * std::fabs(wi_local.z) / ls.pdf);
   const Vec3 origin = offset_origin(p, n, ls.wi, ctx.epsilon);
-  const float tmax = std::isinf(ls.distance) ? kInfinity : ls.distance * (1.0f - 1e-4f);
+  const ShadowRay ray = shadow_ray_to_light(ls, p, origin);
   const int32_t medium = needs_tracking(ctx, medium_on_side(info, ls.wi, n))
                              ? medium_on_side(info, ls.wi, n)
                              : kVisibilityOnly;
-  const uint32_t seg = shadow.add_segment(origin, ls.wi, tmax, medium);
-  if (exit && exit->snee_possible && wi_local.z > 0 && std::isinf(ls.distance)) {
-    // A light-sampled exit toward a distant light after two medium vertices: SNEE could have
-    // made this path too.
-    const ExitWeights w = exit_light_sample_weights(ctx, *exit, ls.wi, ls.pdf, ls.delta);
-    const uint32_t selector = shadow.add_segment(exit->x_i, exit->first_hit_direction,
-                                                 exit->first_hit_tmax, kVisibilityOnly);
-    shadow.add_connection({ConnectionKind::kLight, s, seg, 1, static_cast<int32_t>(selector),
-                           unweighted * w.if_first_hit, unweighted * w.if_not_first_hit});
+  const uint32_t seg = shadow.add_segment(origin, ray.direction, ray.t_max, medium);
+  if (exit && exit->snee_possible && wi_local.z > 0) {
+    // A light-sampled exit after two medium vertices: SNEE could have made this path too.
+    connect_exit_light_sample(ctx, s, *exit, ls.wi, ls.pdf, ls.delta, std::isinf(ls.distance),
+                              unweighted, seg, shadow);
     return;
   }
   const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf_pdf);
@@ -69,29 +65,37 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     const Vec3 n = ctx.embree->normal(geom, state.hit_prim[s], p);
     const SurfaceInfo& info = ctx.surfaces[geom];
     const bool light_skipped = (state.flags[s] & kPathLightSkipped) != 0;
-    state.flags[s] &= ~(kPathEscapeDeferred | kPathLightSkipped);
+    const bool after_exit = (state.flags[s] & kPathAfterSneeExit) != 0;
 
     if (info.emissive && dot(d, n) < 0 && !light_skipped) {
+      // The light pdf is the one NEE used at the path's last real vertex (null crossings in
+      // between move the ray origin, not the vertex).
       const Rgb le = ctx.lights->area_radiance(static_cast<int>(geom), n, d);
-      const float pdf = state.mis_pdf[s];
-      const float weight =
-          pdf > 0 ? power_heuristic(
-                        pdf, ctx.lights->area_pdf(static_cast<int>(geom), state.origin(s), p, n))
-                  : 1.0f;
-      state.add_radiance(s, state.throughput(s) * le * weight);
+      const auto light_pdf = [&] {
+        return ctx.lights->area_pdf(static_cast<int>(geom), state.vertex_j(s), p, n);
+      };
+      if (after_exit) {
+        connect_exit_emission(ctx, state, s, d, le, light_pdf(), false, q.shadow);
+      } else {
+        const float pdf = state.mis_pdf[s];
+        const float weight = pdf > 0 ? power_heuristic(pdf, light_pdf()) : 1.0f;
+        state.add_radiance(s, state.throughput(s) * le * weight);
+      }
     }
 
     if (info.kind == MaterialKind::kNull) {
-      // An index-matched boundary only changes the medium; the ray goes on unchanged.
+      // An index-matched boundary only changes the medium; the ray goes on unchanged (and what
+      // its last real vertex remembered stays valid).
       state.medium[s] = medium_after_crossing(ctx, geom, d, n);
       state.set_ray(s, offset_origin(p, n, d, ctx.epsilon), d);
       state.event[s] += 1;
       q.extend.push(s);
       continue;
     }
+    state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
 
     // The exit-event bookkeeping of SNEE needs the vertices before this one.
-    const ExitEvent exit = make_exit_event(ctx, state, s, p, n, info);
+    const ExitEvent exit = make_exit_event(ctx, state, s, p, n, geom);
     if (exit.snee_possible) counters.count(SneeCounter::kFourWayExitEvents);
     state.depth[s] += 1;
     state.push_vertex(s, p, d, false);
@@ -134,7 +138,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       state.eta_scale[s] *= entering ? eta2 : 1.0f / eta2;
       state.medium[s] = medium_on_side(info, wi, n);
       if (!entering && exit.snee_possible) {
-        defer_bsdf_exit(ctx, state, s, exit, wi, q.shadow);
+        remember_exit(state, s, exit);
       } else if (!entering && exit.light_handled_elsewhere) {
         state.flags[s] |= kPathLightSkipped;
       }

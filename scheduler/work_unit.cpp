@@ -9,8 +9,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// About this many path-stage visits share one clock reading.
-constexpr size_t kSlotsPerTimedTurn = 256;
+// About this many path-stage visits share one clock reading: rare enough that a one-slot
+// workspace spends ~1% on the clock, often enough that a thread preempted during a timed turn
+// (the time is scaled by the period) does not swamp the estimate on a shared machine.
+constexpr size_t kSlotsPerTimedTurn = 32;
 
 // A measured interval also holds one clock reading; that is subtracted, or a one-slot stage of
 // a few hundred nanoseconds would be overstated by a fifth.

@@ -53,7 +53,7 @@ struct UnitWorkspace {
   std::array<uint64_t, kStageCount> stage_calls{};
   uint64_t turns = 0;
   uint64_t active_slot_turns = 0;  // sum over turns of `active` after the refill
-  // Reading the clock costs about as much as a one-slot stage, so small workspaces time one
+  // Two clock readings cost a sizeable part of a one-slot stage, so small workspaces time one
   // turn in `timing_period` and scale it up; large ones time every turn.
   uint32_t timing_period;
   bool timing_turn = false;

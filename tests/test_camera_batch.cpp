@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "kernels/camera.h"
-#include "kernels/path_ops.h"
+#include "kernels/rng.h"
 #include "kernels/simd/divide.h"
 #include "kernels/simd/slot_chunk.h"
 #include "kernels/stages.h"

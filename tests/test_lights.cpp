@@ -11,6 +11,7 @@
 
 #include "kernels/lights/light_table.h"
 #include "tests/support/chi2.h"
+#include "tests/support/form_factor.h"
 #include "tests/support/statistics.h"
 
 namespace snee {
@@ -117,13 +118,7 @@ void expect_agrees(const MeanEstimator& e, double expected, const char* what) {
       << expected;
 }
 
-// Form factor from a point to a parallel a x b rectangle whose corner lies straight above it at
-// height c (a standard radiative-transfer table entry, e.g. Howell's catalogue, case B-3).
-double corner_form_factor(double a, double b, double c) {
-  const double x = a / c, y = b / c;
-  const double sx = std::sqrt(1 + x * x), sy = std::sqrt(1 + y * y);
-  return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2 * M_PI);
-}
+using test::corner_form_factor;
 
 // The pdf of every sample agrees with the pdf MIS uses for the same direction or point.
 void expect_round_trip(const Scene& scene, const LightTable& lights, Vec3 p, uint64_t seed) {

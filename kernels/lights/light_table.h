@@ -11,6 +11,7 @@
 // with the escaped-ray MIS weights, which only ever see the summed radiance.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "kernels/sampling.h"
@@ -26,6 +27,21 @@ struct LightSample {
   bool delta = false;
   bool valid = false;
 };
+
+// The shadow ray of a light sample taken at shading point p, starting from `origin` (p moved
+// off its surface). For a finite light it aims at the sampled point itself and stops just short
+// of it: keeping the direction and distance measured from p would, from the moved origin, end
+// past the light's own surface and count the light as its own occluder.
+struct ShadowRay {
+  Vec3 direction;
+  float t_max;
+};
+inline ShadowRay shadow_ray_to_light(const LightSample& s, Vec3 p, Vec3 origin) {
+  if (std::isinf(s.distance)) return {s.wi, kInfinity};
+  const Vec3 to_light = p + s.wi * s.distance - origin;
+  const float length_to_light = length(to_light);
+  return {to_light / length_to_light, length_to_light * (1.0f - 1e-4f)};
+}
 
 class LightTable {
  public:

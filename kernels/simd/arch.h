@@ -15,7 +15,6 @@ using Arch = xsimd::default_arch;
 using FloatBatch = xsimd::batch<float, Arch>;
 using IntBatch = xsimd::batch<int32_t, Arch>;
 using UintBatch = xsimd::batch<uint32_t, Arch>;
-using FloatMask = xsimd::batch_bool<float, Arch>;
 
 inline constexpr size_t kLanes = FloatBatch::size;
 static_assert(UintBatch::size == kLanes && IntBatch::size == kLanes);

@@ -66,7 +66,8 @@ double tb_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& o
 }
 
 double bt_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& options) {
-  if (!snee_can_produce(s) || !g.valid || s.light_delta || !(g.cos_o > 0) || !(g.cos_k_j > 0)) {
+  if (!snee_can_produce(s) || !g.valid || s.light_delta || !s.light_distant || !(g.cos_o > 0) ||
+      !(g.cos_k_j > 0)) {
     return 0.0;
   }
   const JointImportance jis{s.x_i, s.omega_in, s.x_k, s.medium.g, options.c_joint};

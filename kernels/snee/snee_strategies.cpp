@@ -74,11 +74,7 @@ SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kTopToBottomDimensions> u) {
   const LightSample light = lights.sample(exit.x_k, u[0], Vec2{u[1], u[2]});
-  // Only distant lights (directional, cone, environment): the tracer reaches area and point
-  // lights with its own two-way weights, which SNEE's exit weights do not see (the emission of
-  // an area light hit after the exit is weighted where the path's vertex memory has moved on).
-  if (!light.valid || !(light.pdf > 0) || is_black(light.radiance) ||
-      std::isfinite(light.distance)) {
+  if (!light.valid || !(light.pdf > 0) || is_black(light.radiance)) {
     return failed(SneeFailure::kNoLight);
   }
   const double cos_o = dot(exit.n_k, light.wi);
@@ -101,7 +97,8 @@ SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
   if (!distance.valid || !(distance.t > 0)) return failed(SneeFailure::kZero);
   const Vec3 x_j = exit.x_k + distance.t * omega_kj;
 
-  const SneeSuffix s = make_suffix(origin, medium, exit, x_j, light.wi, light.pdf, light.delta);
+  SneeSuffix s = make_suffix(origin, medium, exit, x_j, light.wi, light.pdf, light.delta);
+  s.light_distant = std::isinf(light.distance);
   // Density of what was just sampled, in the suffix's measure (see top_to_bottom_pdf).
   const double t = distance.t;
   double pdf = probe_pdf(s, options) * light.pdf * distance.pdf;
@@ -120,9 +117,10 @@ SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
   }
 
   const Vec3 inner = exit.x_k - epsilon * exit.n_k, outer = exit.x_k + epsilon * exit.n_k;
+  const ShadowRay to_light = shadow_ray_to_light(light, exit.x_k, outer);
   return finish(Strategy::kTopToBottom, s, light.radiance, pdf, options,
                 {segment_between(inner, x_j), segment_between(x_j, origin.x_i),
-                 ShadowSegment{outer, light.wi, kInfinity}});
+                 ShadowSegment{outer, to_light.direction, to_light.t_max}});
 }
 
 SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,

@@ -30,6 +30,9 @@ struct SneeSuffix {
   // selection probability; for a delta light, the selection probability alone.
   float light_pdf = 0;
   bool light_delta = false;
+  // Whether the light is at infinity (directional, cone, environment). Bottom-to-top finds only
+  // those (its outward direction is looked up, not traced), so it cannot produce the others.
+  bool light_distant = true;
   // Whether the first surface hit of the ray from x_i toward x_k is x_k. Probe-based
   // strategies can only produce suffixes where it holds.
   bool v_first = false;
