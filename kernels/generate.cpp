@@ -45,6 +45,9 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
       chunk.store(field, FloatBatch(1.0f));
     for (float* field : {state.radiance_r, state.radiance_g, state.radiance_b, state.mis_pdf})
       chunk.store(field, FloatBatch(0.0f));
+    // Spectral MIS starts with every colour channel equally likely to be the path's hero.
+    for (float* field : {state.channel_p_r, state.channel_p_g, state.channel_p_b})
+      chunk.store(field, FloatBatch(1.0f / 3.0f));
     chunk.store(state.origin_x, FloatBatch(camera.origin.x));
     chunk.store(state.origin_y, FloatBatch(camera.origin.y));
     chunk.store(state.origin_z, FloatBatch(camera.origin.z));

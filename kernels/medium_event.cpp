@@ -33,24 +33,30 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
   for (const uint32_t s : q.medium) {
     const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
     const RandomBlock r = draw(ctx, state, s, RngPurpose::kFreeFlight);
-    const float t = free_flight_sample(m.sigma_t, r.u[0], r.u[1]);
+    const Rgb channel_p = state.channel_probabilities(s);
+    const float t = free_flight_sample(m.sigma_t, channel_p, r.u[0], r.u[1]);
     const float t_hit = state.hit_t[s];
     if (!(t < t_hit)) {
       // The flight reached the boundary: weight by transmittance over the survival probability.
       if (std::isfinite(t_hit)) {
-        const float survival = free_flight_survival(m.sigma_t, t_hit);
-        state.set_throughput(s, state.throughput(s) * transmittance(m.sigma_t, t_hit) / survival);
+        const Rgb tr = transmittance(m.sigma_t, t_hit);
+        const float survival = free_flight_survival(m.sigma_t, channel_p, t_hit);
+        state.set_throughput(s, state.throughput(s) * tr / survival);
+        state.set_channel_probabilities(s, channel_p * tr / survival);
         q.surface.push(s);
       } else {
         q.escaped.push(s);  // a medium without a closed boundary: the ray leaves the scene
       }
       continue;
     }
-    // Scattering vertex x: throughput picks up sigma_s T(t) / pdf(t) per channel.
+    // Scattering vertex x: throughput picks up sigma_s T(t) / pdf(t) per channel, and each
+    // channel's probability its share of pdf(t).
     const Vec3 w_before = state.direction(s);
     const Vec3 x = state.origin(s) + w_before * t;
-    const float pdf = free_flight_pdf(m.sigma_t, t);
+    const Rgb channel_pdfs = free_flight_channel_pdfs(m.sigma_t, t);
+    const float pdf = dot(channel_p, channel_pdfs);
     state.set_throughput(s, state.throughput(s) * m.sigma_s * transmittance(m.sigma_t, t) / pdf);
+    state.set_channel_probabilities(s, channel_p * channel_pdfs / pdf);
     state.depth[s] += 1;
     state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
     state.push_vertex(s, x, w_before, true);

@@ -39,6 +39,7 @@ enum PathFlags : uint32_t {
   X(uint32_t, hit_prim)                                                                         \
   X(float, mis_pdf)       /* direction pdf at the last vertex if it also sampled lights */      \
   X(float, eta_scale)     /* undoes the eta^2 radiance scaling for Russian roulette */          \
+  X(float, channel_p_r) X(float, channel_p_g) X(float, channel_p_b) /* spectral MIS weights */  \
   X(float, xi_x) X(float, xi_y) X(float, xi_z)     /* SNEE memory: medium vertex x_i */         \
   X(float, win_x) X(float, win_y) X(float, win_z)  /* propagation direction arriving at x_i */  \
   X(float, xj_x) X(float, xj_y) X(float, xj_z)     /* the vertex after it, x_j */               \
@@ -95,6 +96,15 @@ struct PathState {
     radiance_r[s] += v.x;
     radiance_g[s] += v.y;
     radiance_b[s] += v.z;
+  }
+  // Probabilities of the colour channels that free-flight sampling follows (free_flight.h).
+  Rgb channel_probabilities(uint32_t s) const {
+    return {channel_p_r[s], channel_p_g[s], channel_p_b[s]};
+  }
+  void set_channel_probabilities(uint32_t s, Rgb p) {
+    channel_p_r[s] = p.x;
+    channel_p_g[s] = p.y;
+    channel_p_b[s] = p.z;
   }
   Vec3 origin(uint32_t s) const {
     return {origin_x[s], origin_y[s], origin_z[s]};

@@ -103,5 +103,70 @@ TEST(FreeFlight, SpectralMisEstimatorIsUnbiased) {
   }
 }
 
+// Weighted channel mixtures (the path tracer's carried channel probabilities): the pdf still
+// integrates to the stopping channels' share, survival is one minus its cdf, and samples follow
+// it.
+TEST(FreeFlight, WeightedMixtureIsConsistent) {
+  const Rgb weights(0.6f, 0.3f, 0.1f);
+  TestRng rng(7);
+  for (const Case& c : kCases) {
+    const double stopping =
+        (c.sigma_t.x > 0) * 0.6 + (c.sigma_t.y > 0) * 0.3 + (c.sigma_t.z > 0) * 0.1;
+    const auto pdf = [&](double t) { return free_flight_pdf(c.sigma_t, weights, float(t)); };
+    EXPECT_NEAR(test::integrate_interval(pdf, 0, INFINITY), stopping, kQuadratureTolerance)
+        << c.name;
+    for (const float d : {0.1f, 0.7f, 2.0f}) {
+      EXPECT_NEAR(free_flight_survival(c.sigma_t, weights, d),
+                  1.0 - test::integrate_interval(pdf, 0, d), kQuadratureTolerance)
+          << c.name << " d " << d;
+    }
+    const auto r = test::chi2_distance(
+        [&]() -> std::optional<double> {
+          const float u_channel = rng.uniform();
+          return free_flight_sample(c.sigma_t, weights, u_channel, rng.uniform());
+        },
+        pdf, {.scale = 1.0 / average(c.sigma_t), .samples = 1'000'000});
+    EXPECT_GT(r.p_value, 1e-4) << c.name << ": " << r.report;
+  }
+}
+
+// Path-level spectral MIS, as medium_event runs it: a beam through a forward-scattering slab
+// (scattering keeps the direction) of depth L, the channel probabilities carried from flight to
+// flight. Per channel the expected throughput leaving the slab is the absorption-only
+// transmittance e^{-sigma_a L}, however different the channels' extinctions are.
+TEST(FreeFlight, PathLevelSpectralMisIsUnbiasedOverManyFlights) {
+  const Rgb sigma_s(4.0f, 5.0f, 6.0f), sigma_a(0.3f, 0.1f, 0.05f);
+  const Rgb sigma_t = sigma_s + sigma_a;
+  const float depth = 3.0f;  // about 15 collisions per path
+  TestRng rng(8);
+  test::MeanEstimator leaving[3];
+  for (int k = 0; k < 400'000; ++k) {
+    float x = 0;
+    Rgb throughput(1.0f), p(kThird);
+    for (;;) {
+      const float u_channel = rng.uniform();
+      const float t = free_flight_sample(sigma_t, p, u_channel, rng.uniform());
+      if (!(x + t < depth)) {
+        const Rgb tr = transmittance(sigma_t, depth - x);
+        const float survival = free_flight_survival(sigma_t, p, depth - x);
+        throughput = throughput * tr / survival;
+        break;
+      }
+      x += t;
+      const Rgb q = free_flight_channel_pdfs(sigma_t, t);
+      const float pdf = dot(p, q);
+      throughput = throughput * sigma_s * transmittance(sigma_t, t) / pdf;
+      p = p * q / pdf;
+    }
+    for (int ch = 0; ch < 3; ++ch) leaving[ch].add(throughput[ch]);
+  }
+  for (int ch = 0; ch < 3; ++ch) {
+    const double expected = std::exp(-double(sigma_a[ch]) * depth);
+    EXPECT_LT(std::fabs(leaving[ch].mean() - expected), 4 * leaving[ch].standard_error())
+        << "channel " << ch << ": " << leaving[ch].mean() << " +- " << leaving[ch].standard_error()
+        << ", expected " << expected;
+  }
+}
+
 }  // namespace
 }  // namespace snee
