@@ -43,6 +43,7 @@ struct Entry {
   int spp = 0;
   ImageError error;
   double efficiency = 0;
+  double efficiency_trimmed = 0;
 };
 
 RenderResult render_logged(const Scene& scene, RenderOptions options, bool quiet,
@@ -154,11 +155,15 @@ int CompareCommand::run() const {
     e.film.meta = {o.spp, integrator, o.seed, r.stats.seconds, name};
     e.error = image_error(e.film, reference);
     e.efficiency = e.error.relative_mse > 0 ? 1.0 / (e.error.relative_mse * e.stats.seconds) : 0;
+    e.efficiency_trimmed = e.error.relative_mse_trimmed > 0
+                               ? 1.0 / (e.error.relative_mse_trimmed * e.stats.seconds)
+                               : 0;
     write_exr(e.film, (dir / (integrator + ".exr")).string());
     entries.push_back(std::move(e));
   }
 
   const double baseline = entries.front().efficiency;
+  const double baseline_trimmed = entries.front().efficiency_trimmed;
   nlohmann::ordered_json report = {
       {"scene", name},
       {"resolution", {reference.width, reference.height}},
@@ -170,21 +175,25 @@ int CompareCommand::run() const {
         {"integrator", reference.meta.integrator}}},
       {"relative_mse_floor", kRelativeMseFloor},
       {"integrators", nlohmann::ordered_json::array()}};
-  std::printf("%-6s %8s %9s %12s %12s %12s %10s\n", "integ.", "spp", "seconds", "relMSE",
-              "relMSE raw", "efficiency", "vs first");
+  std::printf("%-6s %8s %9s %12s %12s %12s %10s %10s\n", "integ.", "spp", "seconds", "relMSE",
+              "trimmed", "efficiency", "vs first", "(trimmed)");
   std::vector<const Film*> films;
   std::vector<Film> errors;
   for (const Entry& e : entries) {
     const double ratio = baseline > 0 ? e.efficiency / baseline : 0;
-    std::printf("%-6s %8d %9.2f %12.4e %12.4e %12.4e %10.3f\n", e.integrator.c_str(), e.spp,
-                e.stats.seconds, e.error.relative_mse, e.error.relative_mse_raw, e.efficiency,
-                ratio);
+    const double ratio_trimmed = baseline_trimmed > 0 ? e.efficiency_trimmed / baseline_trimmed : 0;
+    std::printf("%-6s %8d %9.2f %12.4e %12.4e %12.4e %10.3f %10.3f\n", e.integrator.c_str(), e.spp,
+                e.stats.seconds, e.error.relative_mse, e.error.relative_mse_trimmed, e.efficiency,
+                ratio, ratio_trimmed);
     report["integrators"].push_back({{"name", e.integrator},
                                      {"spp", e.spp},
                                      {"seconds", e.stats.seconds},
                                      {"relative_mse", e.error.relative_mse},
                                      {"relative_mse_raw", e.error.relative_mse_raw},
                                      {"reference_noise", e.error.reference_noise},
+                                     {"relative_mse_trimmed", e.error.relative_mse_trimmed},
+                                     {"efficiency_trimmed", e.efficiency_trimmed},
+                                     {"efficiency_trimmed_vs_first", ratio_trimmed},
                                      {"efficiency", e.efficiency},
                                      {"efficiency_vs_first", ratio},
                                      {"mrays_per_second", e.stats.mrays_per_second()},

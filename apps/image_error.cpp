@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 namespace snee {
 
@@ -54,18 +55,28 @@ ImageError image_error(const Film& render, const Film& reference) {
   check_sizes(render, reference);
   ImageError e;
   const size_t n = render.mean.size();
+  std::vector<double> pixel_error(n);
   for (size_t i = 0; i < n; ++i) {
+    double raw = 0, noise = 0;
     for (int c = 0; c < 3; ++c) {
-      const double raw = squared_relative_error(render, reference, i, c);
-      const double noise = reference_variance(reference, i, c);
-      e.relative_mse_raw += raw;
-      e.reference_noise += noise;
+      raw += squared_relative_error(render, reference, i, c);
+      noise += reference_variance(reference, i, c);
     }
+    e.relative_mse_raw += raw;
+    e.reference_noise += noise;
+    pixel_error[i] = raw - noise;
   }
   const double count = 3.0 * static_cast<double>(n);
   e.relative_mse_raw /= count;
   e.reference_noise /= count;
   e.relative_mse = std::max(0.0, e.relative_mse_raw - e.reference_noise);
+  const size_t dropped = std::max<size_t>(1, static_cast<size_t>(kTrimmedFraction * n));
+  if (n > dropped) {
+    std::nth_element(pixel_error.begin(), pixel_error.end() - dropped, pixel_error.end());
+    double kept = 0;
+    for (auto it = pixel_error.begin(); it != pixel_error.end() - dropped; ++it) kept += *it;
+    e.relative_mse_trimmed = std::max(0.0, kept / (3.0 * static_cast<double>(n - dropped)));
+  }
   return e;
 }
 

@@ -16,7 +16,12 @@ struct ImageError {
   double relative_mse_raw = 0;
   // Reference noise alone, mean of var_ref / (ref^2 + floor): what the raw figure includes.
   double reference_noise = 0;
+  // relative_mse without the kTrimmedFraction of pixels with the largest error (at least one):
+  // a few fireflies can carry most of a short render's squared error, and this figure shows
+  // what the rest of the image looks like. A biased summary, reported beside the full one.
+  double relative_mse_trimmed = 0;
 };
+inline constexpr double kTrimmedFraction = 1e-3;
 // Keeps near-black pixels from dominating the relative error (as in Rousselle et al. 2011).
 inline constexpr double kRelativeMseFloor = 1e-2;
 

@@ -22,12 +22,13 @@ for object in sphere bunny; do
 done
 python3 - <<'PY'
 import json, pathlib
-print("| scene | pt spp | snee spp | pt relMSE | snee relMSE | efficiency snee / pt |")
-print("|---|---:|---:|---:|---:|---:|")
+print("| scene | pt spp | snee spp | pt relMSE | snee relMSE | efficiency snee / pt | trimmed: pt | snee | ratio |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
 for d in sorted(pathlib.Path("out/grid").iterdir()):
     r = json.loads((d / "compare.json").read_text())
     pt, sn = r["integrators"][0], r["integrators"][1]
     ratio = f'{sn["efficiency_vs_first"]:.2f}' if pt["efficiency"] > 0 else "pt: no signal"
     print(f'| {r["scene"]} | {pt["spp"]} | {sn["spp"]} | {pt["relative_mse"]:.3g} | '
-          f'{sn["relative_mse"]:.3g} | {ratio} |')
+          f'{sn["relative_mse"]:.3g} | {ratio} | {pt["relative_mse_trimmed"]:.3g} | '
+          f'{sn["relative_mse_trimmed"]:.3g} | {sn["efficiency_trimmed_vs_first"]:.2f} |')
 PY
