@@ -108,6 +108,10 @@ BenchCommand::BenchCommand(CLI::App& parent)
                "Samples each work unit takes per pixel in one pass (sets the unit size)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  c.add_option("--queue-capacity", queue_capacity_,
+               "Path slots per work unit of the local and global schedules")
+      ->check(CLI::Range(16, 1 << 20))
+      ->capture_default_str();
   c.add_flag("--quick", quick_,
              "Tiny smoke run (16x16, 1 spp, 1 repeat, no dragon) unless options say otherwise");
   c.add_option("--json", json_, "Also write the results as JSON to this file");
@@ -167,6 +171,7 @@ int BenchCommand::run() const {
         o.max_depth = w.max_depth;
         o.schedule = schedule;
         o.samples_per_pass = samples_per_pass_;
+        o.queue_capacity = queue_capacity_;
         BenchRun run{schedule, threads,
                      std::string(schedule) == "megakernel" ? 1 : o.queue_capacity,
                      measure_render(w.scene, o, settings.repeats)};
@@ -202,7 +207,7 @@ int BenchCommand::run() const {
            {{"width", settings.resolution.width}, {"height", settings.resolution.height}}},
           {"repeats", settings.repeats},
           {"samples_per_pass", samples_per_pass_},
-          {"queue_capacity", RenderOptions{}.queue_capacity},
+          {"queue_capacity", queue_capacity_},
           {"quick", quick_},
           {"raw_rays_per_query", settings.raw_rays},
           {"raw_repeats", settings.raw_repeats},

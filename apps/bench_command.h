@@ -26,6 +26,7 @@ class BenchCommand {
   std::string resolution_ = "128x128";
   int repeats_ = 3;
   int samples_per_pass_ = RenderOptions{}.samples_per_pass;
+  int queue_capacity_ = RenderOptions{}.queue_capacity;
   bool quick_ = false;
   std::string json_;
   std::string dragon_;

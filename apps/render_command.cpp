@@ -63,7 +63,8 @@ RenderCommand::RenderCommand(CLI::App& parent)
   c.add_option("--seed", options_.seed, "Random seed [default: the scene's, else 0]")
       ->check(integer_at_least(uint32_t{0}));
   c.add_option("--integrator", options_.integrator,
-               "pt (path tracing), snee or sla [default: the scene's, else pt]")
+               "pt (path tracing), snee (pt + subdivision NEE) or sla (straight-line shadow rays: "
+               "biased, for comparison) [default: the scene's, else pt]")
       ->check(CLI::IsMember({"pt", "snee", "sla"}));
   c.add_option("-o,--output", output_, "Output EXR; the PNG preview goes beside it")
       ->default_str("out/<scene-name>.exr")

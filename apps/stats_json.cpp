@@ -36,6 +36,8 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"samples_per_pass", options.samples_per_pass},
       {"schedule", options.schedule},
       {"seconds", stats.seconds},
+      {"pass_seconds", stats.pass_seconds},
+      {"pass_cpu_seconds", stats.pass_cpu_seconds},
       {"stage_seconds", stages},
       {"rays", rays},
       {"paths", stats.paths},

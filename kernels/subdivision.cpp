@@ -72,7 +72,8 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
           sample_top_to_bottom(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, u);
       queue_candidate(c, Strategy::kTopToBottom, s, beta, q.shadow, counters);
     }
-    if (ctx.snee.enabled.contains(Strategy::kBottomToTop)) {
+    // Bottom-to-top finds only lights seen by escaped rays; without any it cannot succeed.
+    if (ctx.snee.enabled.contains(Strategy::kBottomToTop) && ctx.lights->has_escaped_lights()) {
       const RandomBlock a = draw_at_vertex(ctx, state, s, RngPurpose::kSneeBottomToTop);
       const RandomBlock b = draw_at_vertex(ctx, state, s, RngPurpose::kSneeBottomToTopBtdf);
       const std::array<float, kBottomToTopDimensions> u = {a.u[0], a.u[1], a.u[2],

@@ -1,34 +1,49 @@
 #!/usr/bin/env bash
 # Reproduces the SNEE paper's grid (docs/results.md): for the sphere and the bunny under a
 # directional, cone and environment light with GGX roughness 0.2, 0.04 and a smooth interface,
-# `snee compare` renders pt and snee at equal time against a long snee reference. Writes
-# out/grid/<scene>/ (EXRs, compare.json, contact-sheet.png) and prints a markdown table of the
-# efficiency ratios (python3 formats it). Usage: scripts/paper-grid.sh [SECONDS] [REF_SPP] [RES]
+# `snee compare` renders pt and snee at equal time against a long snee reference, three times
+# with independent seeds (the reference is made once, by the first run). Writes
+# out/grid/<scene>/run<N>/ (EXRs, compare.json, contact-sheet.png) and prints a markdown table
+# of the median efficiency ratios (python3 formats it).
+# Usage: scripts/paper-grid.sh [SECONDS] [REF_SPP] [RES] [RUNS]
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 seconds=${1:-4}
-reference_spp=${2:-1024}
-resolution=${3:-64x64}
+reference_spp=${2:-2048}
+resolution=${3:-48x48}
+runs=${4:-3}
 for object in sphere bunny; do
   for light in directional cone env; do
     for surface in r0.2 r0.04 smooth; do
       scene="$object-$light-$surface"
-      build/apps/snee compare "builtin:$scene" --time "$seconds" --reference-spp "$reference_spp" \
-        --resolution "$resolution" -o "out/grid/$scene" -q >/dev/null
+      dir="out/grid/$scene"
+      for run in $(seq 1 "$runs"); do
+        reference=()
+        [[ $run -gt 1 ]] && reference=(--reference "$dir/run1/reference.exr")
+        build/apps/snee compare "builtin:$scene" --time "$seconds" --reference-spp "$reference_spp" \
+          --resolution "$resolution" --seed "$run" "${reference[@]}" -o "$dir/run$run" -q >/dev/null
+      done
       echo "done $scene" >&2
     done
   done
 done
 python3 - <<'PY'
-import json, pathlib
-print("| scene | pt spp | snee spp | pt relMSE | snee relMSE | efficiency snee / pt | trimmed: pt | snee | ratio |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+import json, pathlib, statistics
+print("| scene | spp pt / snee | relMSE pt | relMSE snee | efficiency snee / pt | trimmed relMSE pt | snee | efficiency ratio (trimmed) |")
+print("|---|---:|---:|---:|---:|---:|---:|---:|")
 for d in sorted(pathlib.Path("out/grid").iterdir()):
-    r = json.loads((d / "compare.json").read_text())
-    pt, sn = r["integrators"][0], r["integrators"][1]
-    ratio = f'{sn["efficiency_vs_first"]:.2f}' if pt["efficiency"] > 0 else "pt: no signal"
-    print(f'| {r["scene"]} | {pt["spp"]} | {sn["spp"]} | {pt["relative_mse"]:.3g} | '
-          f'{sn["relative_mse"]:.3g} | {ratio} | {pt["relative_mse_trimmed"]:.3g} | '
-          f'{sn["relative_mse_trimmed"]:.3g} | {sn["efficiency_trimmed_vs_first"]:.2f} |')
+    runs = [json.loads(p.read_text()) for p in sorted(d.glob("run*/compare.json"))]
+    pt = [r["integrators"][0] for r in runs]
+    sn = [r["integrators"][1] for r in runs]
+    med = lambda xs: statistics.median(xs)
+    spp = f'{med([p["spp"] for p in pt]):.0f} / {med([s["spp"] for s in sn]):.0f}'
+    ratios = [s["efficiency_vs_first"] for s in sn]
+    trimmed = [s["efficiency_trimmed_vs_first"] for s in sn]
+    print(f'| {d.name} | {spp} | {med([p["relative_mse"] for p in pt]):.3g} | '
+          f'{med([s["relative_mse"] for s in sn]):.3g} | {med(ratios):.2f} '
+          f'({min(ratios):.2f}-{max(ratios):.2f}) | '
+          f'{med([p["relative_mse_trimmed"] for p in pt]):.3g} | '
+          f'{med([s["relative_mse_trimmed"] for s in sn]):.3g} | {med(trimmed):.2f} '
+          f'({min(trimmed):.2f}-{max(trimmed):.2f}) |')
 PY

@@ -62,6 +62,8 @@ class LightTable {
   float area_pdf(int shape, Vec3 p, Vec3 hit, Vec3 n) const;
 
   bool has_delta_lights() const { return has_delta_; }
+  // Whether any light is seen by escaped rays (cone, constant, env map).
+  bool has_escaped_lights() const { return !escaping_.empty(); }
 
  private:
   struct AreaLight {
