@@ -66,7 +66,7 @@ nlohmann::ordered_json memory_versus_spp(const BenchWorkload& w, const Settings&
     o.max_depth = w.max_depth;
     o.threads = settings.threads.back();
     const Measurement m = measure_render(w.scene, o, 1);
-    runs.push_back({{"spp", spp}, {"peak_memory_mib", m.peak_memory_mib}});
+    runs.push_back({{"spp", spp}, {"peak_memory_mib", m.peak_memory_mib()}});
   }
   return {{"workload", w.name},
           {"schedule", "local"},
@@ -163,20 +163,25 @@ int BenchCommand::run() const {
           measure_embree_throughput(w.scene, embree, settings.raw_rays, settings.raw_repeats);
     }
     for (const int threads : settings.threads) {
-      for (const char* schedule : kSchedules) {
-        RenderOptions o;
-        o.spp = result.spp;
-        o.threads = threads;
-        o.integrator = w.integrator;
-        o.max_depth = w.max_depth;
-        o.schedule = schedule;
-        o.samples_per_pass = samples_per_pass_;
-        o.queue_capacity = queue_capacity_;
-        BenchRun run{schedule, threads,
-                     std::string(schedule) == "megakernel" ? 1 : o.queue_capacity,
-                     measure_render(w.scene, o, settings.repeats)};
-        result.runs.push_back(std::move(run));
+      // The schedules' repeats are interleaved, so other work on a shared machine slows the
+      // compared schedules alike.
+      std::vector<BenchRun> runs;
+      for (const char* schedule : kSchedules) runs.push_back({schedule, threads, 0, Measurement()});
+      for (int r = 0; r < settings.repeats; ++r) {
+        for (BenchRun& run : runs) {
+          RenderOptions o;
+          o.spp = result.spp;
+          o.threads = threads;
+          o.integrator = w.integrator;
+          o.max_depth = w.max_depth;
+          o.schedule = run.schedule;
+          o.samples_per_pass = samples_per_pass_;
+          o.queue_capacity = queue_capacity_;
+          run.queue_capacity = run.schedule == "megakernel" ? 1 : o.queue_capacity;
+          run.measurement.repeat(w.scene, o);
+        }
       }
+      for (BenchRun& run : runs) result.runs.push_back(std::move(run));
     }
     print_bench_result(stdout, result);
     std::fflush(stdout);

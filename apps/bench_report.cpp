@@ -35,7 +35,7 @@ struct Figures {
 };
 
 Figures figures(const BenchRun& run, const EmbreeThroughput& raw) {
-  const RenderStats& s = run.measurement.median;
+  const RenderStats& s = run.measurement.median();
   Figures f;
   f.seconds = s.pass_seconds;
   f.cpu_seconds = s.pass_cpu_seconds;
@@ -102,14 +102,15 @@ void print_bench_result(std::FILE* out, const BenchResult& r) {
   std::fprintf(
       out, "\n== %s: %s\n   %s, %zu triangles, %dx%d, %d spp, %llu paths\n", w.name.c_str(),
       w.description.c_str(), w.source.c_str(), r.triangles, c.width, c.height, r.spp,
-      r.runs.empty() ? 0ull : static_cast<unsigned long long>(r.runs[0].measurement.median.paths));
+      r.runs.empty() ? 0ull
+                     : static_cast<unsigned long long>(r.runs[0].measurement.median().paths));
   std::fprintf(out, "   raw Embree, 1 thread, Mrays per CPU-second:");
   for (int q = 0; q < static_cast<int>(RawQuery::kCount); ++q)
     std::fprintf(out, " %s %.2f", raw_query_name(static_cast<RawQuery>(q)),
                  r.raw.rate[q].mrays_per_cpu_second);
   std::fprintf(out, "\n");
   if (!r.runs.empty()) {
-    const RenderStats& s = r.runs[0].measurement.median;
+    const RenderStats& s = r.runs[0].measurement.median();
     const double paths = static_cast<double>(std::max<uint64_t>(1, s.paths));
     std::fprintf(out, "   rays per path:");
     for (int k = 0; k < kRayKinds; ++k)
@@ -129,8 +130,8 @@ void print_bench_result(std::FILE* out, const BenchResult& r) {
                  run.schedule.c_str(), run.threads, f.paths_per_second, f.paths_per_cpu_second,
                  f.mrays[kRayKinds], f.mrays_cpu[kRayKinds], 100 * f.cpu_share,
                  100 * f.vs_closest_single, 100 * f.traversal_bound,
-                 run.measurement.median.queue_occupancy, f.extend_batch,
-                 run.measurement.peak_memory_mib, ratio[0], ratio[1]);
+                 run.measurement.median().queue_occupancy, f.extend_batch,
+                 run.measurement.peak_memory_mib(), ratio[0], ratio[1]);
   }
   // Short labels in Stage order.
   static const char* labels[kStages] = {"generate", "extend", "medium", "surface", "escaped",
@@ -157,7 +158,7 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
   }
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
   for (const BenchRun& run : r.runs) {
-    const RenderStats& s = run.measurement.median;
+    const RenderStats& s = run.measurement.median();
     const Figures f = figures(run, r.raw);
     const auto ratio = vs_megakernel(r, run);
     nlohmann::ordered_json rays = nlohmann::ordered_json::object();
@@ -175,8 +176,8 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
         {"seconds", f.seconds},
         {"cpu_seconds", f.cpu_seconds},
         {"cpu_share", f.cpu_share},
-        {"repeat_seconds", run.measurement.pass_seconds},
-        {"repeat_cpu_seconds", run.measurement.pass_cpu_seconds},
+        {"repeat_seconds", run.measurement.pass_seconds()},
+        {"repeat_cpu_seconds", run.measurement.pass_cpu_seconds()},
         {"paths", s.paths},
         {"paths_per_second", f.paths_per_second},
         {"paths_per_cpu_second", f.paths_per_cpu_second},
@@ -193,7 +194,7 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
         {"queue_occupancy", s.queue_occupancy},
         {"mean_extend_batch", f.extend_batch},
         {"path_state_bytes_per_slot", s.path_state_bytes_per_slot},
-        {"peak_memory_mib", run.measurement.peak_memory_mib},
+        {"peak_memory_mib", run.measurement.peak_memory_mib()},
     });
   }
   return {

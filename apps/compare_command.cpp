@@ -22,8 +22,9 @@ namespace fs = std::filesystem;
 
 // Seeds of the compared renders and of the reference differ, so their noise is independent.
 constexpr uint32_t kReferenceSeedOffset = 1000003;
-// Samples per pixel of the pilot render that measures an integrator's time per sample.
-constexpr int kPilotSpp = 2;
+// Pilot renders double their spp from this until one takes this share of the budget.
+constexpr int kFirstPilotSpp = 2;
+constexpr double kPilotShare = 0.1;
 
 std::vector<std::string> split_list(const std::string& text) {
   std::vector<std::string> items;
@@ -54,6 +55,30 @@ RenderResult render_logged(const Scene& scene, RenderOptions options, bool quiet
                  options.spp, r.stats.seconds);
   }
   return r;
+}
+
+// The spp whose render takes `seconds`. A render's time is a fixed part (scene set-up, threads,
+// the film) plus a part per sample; pilots of growing spp until one is long enough to time
+// measure both from the last two, so a short pilot's set-up cost does not inflate the time per
+// sample (which would hand the cheaper integrator less than its share of the time).
+int equal_time_spp(const Scene& scene, RenderOptions options, double seconds, bool quiet) {
+  int spp = kFirstPilotSpp;
+  options.spp = spp;
+  double time = render_logged(scene, options, quiet, "pilot").stats.seconds;
+  int previous_spp = 0;
+  double previous_time = 0;
+  while (time < kPilotShare * seconds && spp < (1 << 20)) {
+    previous_spp = spp;
+    previous_time = time;
+    spp *= 2;
+    options.spp = spp;
+    time = render_logged(scene, options, quiet, "pilot").stats.seconds;
+  }
+  const double per_spp = previous_spp > 0 && time > previous_time
+                             ? (time - previous_time) / (spp - previous_spp)
+                             : time / spp;
+  const double fixed = std::max(0.0, time - per_spp * spp);
+  return std::max(1, static_cast<int>(std::floor((seconds - fixed) / per_spp)));
 }
 
 }  // namespace
@@ -139,12 +164,7 @@ int CompareCommand::run() const {
     if (spp_ > 0) {
       o.spp = spp_;
     } else {
-      // Equal time: a short pilot measures the time per sample (scene set-up included, as in
-      // the final render), which fixes the spp that fits the budget.
-      RenderOptions pilot = o;
-      pilot.spp = kPilotSpp;
-      const double per_spp = render_logged(scene, pilot, quiet_, "pilot").stats.seconds / kPilotSpp;
-      o.spp = std::max(1, static_cast<int>(std::floor(seconds_ / per_spp)));
+      o.spp = equal_time_spp(scene, o, seconds_, quiet_);
     }
     RenderResult r = render_logged(scene, o, quiet_, "render");
     Entry e;

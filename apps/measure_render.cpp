@@ -6,21 +6,36 @@
 
 namespace snee {
 
+void Measurement::repeat(const Scene& scene, const RenderOptions& options) {
+  reset_peak_memory();
+  runs_.push_back(render(scene, options).stats);
+  peak_memory_mib_ = std::max(peak_memory_mib_, peak_memory_mib());
+}
+
+const RenderStats& Measurement::median() const {
+  std::vector<const RenderStats*> order;
+  for (const RenderStats& r : runs_) order.push_back(&r);
+  std::sort(order.begin(), order.end(), [](const RenderStats* a, const RenderStats* b) {
+    return a->pass_seconds < b->pass_seconds;
+  });
+  return *order[order.size() / 2];
+}
+
+std::vector<double> Measurement::pass_seconds() const {
+  std::vector<double> s;
+  for (const RenderStats& r : runs_) s.push_back(r.pass_seconds);
+  return s;
+}
+
+std::vector<double> Measurement::pass_cpu_seconds() const {
+  std::vector<double> s;
+  for (const RenderStats& r : runs_) s.push_back(r.pass_cpu_seconds);
+  return s;
+}
+
 Measurement measure_render(const Scene& scene, const RenderOptions& options, int repeats) {
   Measurement m;
-  reset_peak_memory();
-  std::vector<RenderStats> runs;
-  for (int r = 0; r < repeats; ++r) {
-    runs.push_back(render(scene, options).stats);
-    m.pass_seconds.push_back(runs.back().pass_seconds);
-    m.pass_cpu_seconds.push_back(runs.back().pass_cpu_seconds);
-  }
-  m.peak_memory_mib = peak_memory_mib();
-  std::vector<size_t> order(runs.size());
-  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(),
-            [&](size_t a, size_t b) { return runs[a].pass_seconds < runs[b].pass_seconds; });
-  m.median = runs[order[order.size() / 2]];
+  for (int r = 0; r < repeats; ++r) m.repeat(scene, options);
   return m;
 }
 

@@ -87,10 +87,14 @@ int ScaleCommand::run() const {
   std::printf("snee scale %s: %s, %s schedule, %dx%d, %d spp, %d repeat(s), %u hardware threads\n",
               scene_.c_str(), options.integrator.c_str(), schedule_.c_str(), scene.camera.width,
               scene.camera.height, options.spp, repeats_, std::thread::hardware_concurrency());
-  std::vector<Measurement> measurements;
-  for (const int t : threads) {
-    options.threads = t;
-    measurements.push_back(measure_render(scene, options, repeats_));
+  // Repeats are interleaved over the thread counts, so a burst of other work on the machine
+  // does not land on one count alone.
+  std::vector<Measurement> measurements(threads.size());
+  for (int r = 0; r < repeats_; ++r) {
+    for (size_t i = 0; i < threads.size(); ++i) {
+      options.threads = threads[i];
+      measurements[i].repeat(scene, options);
+    }
   }
 
   // Speedup is measured from the smallest thread count, scaled so that ideal scaling reads n.
@@ -98,15 +102,16 @@ int ScaleCommand::run() const {
   for (size_t i = 0; i < threads.size(); ++i) {
     if (threads[i] < threads[base]) base = i;
   }
-  const double base_seconds = measurements[base].median.pass_seconds * threads[base];
-  const double base_cpu_seconds = measurements[base].median.pass_cpu_seconds;
+  const double base_seconds = measurements[base].median().pass_seconds * threads[base];
+  const double base_cpu_seconds = measurements[base].median().pass_cpu_seconds;
   std::vector<ScalePoint> points;
   nlohmann::ordered_json results = nlohmann::ordered_json::array();
   std::printf("%7s %10s %10s %10s %6s %11s %8s %10s %10s\n", "threads", "seconds", "min", "max",
               "cpu%", "paths/s", "speedup", "efficiency", "cpu-effic");
   for (size_t i = 0; i < threads.size(); ++i) {
     const Measurement& m = measurements[i];
-    const RenderStats& s = m.median;
+    const RenderStats& s = m.median();
+    const std::vector<double> repeat_seconds = m.pass_seconds();
     const double speedup = s.pass_seconds > 0 ? base_seconds / s.pass_seconds : 0;
     const double efficiency = speedup / threads[i];
     const double work_efficiency =
@@ -117,15 +122,15 @@ int ScaleCommand::run() const {
         s.pass_seconds > 0 ? static_cast<double>(s.paths) / s.pass_seconds : 0;
     points.push_back({threads[i], speedup, efficiency, work_efficiency});
     std::printf("%7d %10.3f %10.3f %10.3f %5.0f%% %11.0f %7.2fx %9.1f%% %9.1f%%\n", threads[i],
-                s.pass_seconds, *std::min_element(m.pass_seconds.begin(), m.pass_seconds.end()),
-                *std::max_element(m.pass_seconds.begin(), m.pass_seconds.end()), 100 * cpu_share,
+                s.pass_seconds, *std::min_element(repeat_seconds.begin(), repeat_seconds.end()),
+                *std::max_element(repeat_seconds.begin(), repeat_seconds.end()), 100 * cpu_share,
                 paths_per_second, speedup, 100 * efficiency, 100 * work_efficiency);
     results.push_back(
         {{"threads", threads[i]},
          {"seconds", s.pass_seconds},
-         {"repeat_seconds", m.pass_seconds},
+         {"repeat_seconds", repeat_seconds},
          {"cpu_seconds", s.pass_cpu_seconds},
-         {"repeat_cpu_seconds", m.pass_cpu_seconds},
+         {"repeat_cpu_seconds", m.pass_cpu_seconds()},
          {"cpu_share", cpu_share},
          {"paths", s.paths},
          {"paths_per_second", paths_per_second},
@@ -134,7 +139,7 @@ int ScaleCommand::run() const {
          {"speedup", speedup},
          {"efficiency", efficiency},
          {"work_efficiency", work_efficiency},
-         {"peak_memory_mib", m.peak_memory_mib}});
+         {"peak_memory_mib", m.peak_memory_mib()}});
   }
 
   if (!json_.empty()) {

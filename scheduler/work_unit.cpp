@@ -26,6 +26,11 @@ double clock_overhead_seconds() {
   return overhead;
 }
 
+// A sampled stage of a small workspace takes microseconds; a sample this long is a thread that
+// was preempted (or a page fault), and scaled by the period it would swamp the estimate, so it
+// is dropped and its time left to the unattributed rest.
+constexpr double kLongestSample = 1e-3;
+
 template <typename F>
 void timed(UnitWorkspace& ws, Stage stage, F&& f) {
   const int i = static_cast<int>(stage);
@@ -37,6 +42,7 @@ void timed(UnitWorkspace& ws, Stage stage, F&& f) {
   const auto start = Clock::now();
   f();
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (ws.timing_period > 1 && seconds > kLongestSample) return;
   ws.stage_seconds[i] += std::max(0.0, seconds - clock_overhead_seconds()) * ws.timing_period;
 }
 
