@@ -9,7 +9,7 @@ namespace snee {
 void Measurement::repeat(const Scene& scene, const RenderOptions& options) {
   reset_peak_memory();
   runs_.push_back(render(scene, options).stats);
-  peak_memory_mib_ = std::max(peak_memory_mib_, peak_memory_mib());
+  peak_memory_mib_ = std::max(peak_memory_mib_, peak_memory_since_reset_mib());
 }
 
 const RenderStats& Measurement::median() const {

@@ -16,7 +16,7 @@ bool reset_peak_memory() {
   return static_cast<bool>(clear_refs);
 }
 
-double peak_memory_mib() {
+double peak_memory_since_reset_mib() {
   std::ifstream status("/proc/self/status");
   std::string key;
   while (status >> key) {

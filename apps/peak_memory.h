@@ -8,6 +8,6 @@ namespace snee {
 
 // Returns freed heap pages to the system first, so an earlier, larger run does not count.
 bool reset_peak_memory();
-double peak_memory_mib();
+double peak_memory_since_reset_mib();
 
 }  // namespace snee

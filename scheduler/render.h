@@ -36,9 +36,9 @@ struct RenderOptions {
   int threads = 0;  // 0 = all hardware threads
   std::string integrator = "pt";
   int max_depth = 1024;
-  int queue_capacity = 4096;  // path slots per work unit (batch size of every stage)
-  int tile_size = 16;         // work-unit tile edge in pixels (fixed by image, never by threads)
-  int samples_per_pass = 8;   // samples each work unit takes per pixel in one pass
+  int queue_capacity = 256;  // path slots per work unit (batch size of every stage)
+  int tile_size = 16;        // work-unit tile edge in pixels (fixed by image, never by threads)
+  int samples_per_pass = 8;  // samples each work unit takes per pixel in one pass
   std::string schedule = "local";  // "megakernel", "local" or "global" (scheduler/schedule.h)
   SneeOptions snee;                // open choices of docs/snee.md section 7 (integrator "snee")
 };

@@ -125,6 +125,7 @@ class GenerateCameraRays : public ::testing::Test {
       ASSERT_EQ(state.radiance(s), Rgb(0.0f));
       ASSERT_EQ(state.mis_pdf[s], 0.0f);
       ASSERT_EQ(state.eta_scale[s], 1.0f);
+      ASSERT_EQ(state.channel_probabilities(s), Rgb(1.0f / 3.0f));
       ASSERT_EQ(state.origin(s), ctx_.camera_origin);
       const Vec3 got = state.direction(s);
       for (int c = 0; c < 3; ++c)

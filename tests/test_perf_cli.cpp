@@ -89,6 +89,7 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
         EXPECT_TRUE(run["mrays_per_second"].contains(kind)) << where << " " << kind;
       expect_keys(run["stages"]["extend"], {"seconds", "calls", "share_of_thread_time"}, where);
       EXPECT_GT(run["paths"].get<uint64_t>(), 0u) << where;
+      EXPECT_GT(run["peak_memory_mib"].get<double>(), 0.0) << where;
     }
   }
   EXPECT_EQ(b["memory_vs_spp"]["runs"].size(), 2u);
