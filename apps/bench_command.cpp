@@ -82,24 +82,13 @@ BenchCommand::BenchCommand(CLI::App& parent)
   CLI::App& c = *command_;
   dragon_ = default_dragon_path();
   c.add_option("--threads", threads_, "Comma-separated thread counts, e.g. 1,2")
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            return parse_thread_counts(text)
-                       ? std::string()
-                       : "expected positive integers like 1,2, got '" + text + "'";
-          },
-          "LIST"))
+      ->check(thread_counts_validator())
       ->capture_default_str();
   c.add_option("--spp", spp_, "Samples per pixel (the camera workload takes 16x as many)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   c.add_option("--resolution", resolution_, "Image size WxH of every workload")
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            return parse_resolution(text) ? std::string()
-                                          : "expected WxH with positive sizes, got '" + text + "'";
-          },
-          "WxH"))
+      ->check(resolution_validator())
       ->capture_default_str();
   c.add_option("--repeats", repeats_, "Renders per measurement; the median is reported")
       ->check(CLI::PositiveNumber)

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <stdexcept>
 #include <vector>
 
 #include "apps/contact_sheet.h"
@@ -25,17 +24,6 @@ constexpr uint32_t kReferenceSeedOffset = 1000003;
 // Pilot renders double their spp from this until one takes this share of the budget.
 constexpr int kFirstPilotSpp = 2;
 constexpr double kPilotShare = 0.1;
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> items;
-  size_t begin = 0;
-  while (begin <= text.size()) {
-    const size_t end = std::min(text.find(',', begin), text.size());
-    items.push_back(text.substr(begin, end - begin));
-    begin = end + 1;
-  }
-  return items;
-}
 
 struct Entry {
   std::string integrator;
@@ -92,6 +80,8 @@ CompareCommand::CompareCommand(CLI::App& parent)
   c.add_option("SCENE", scene_, "JSON scene file or builtin:NAME")->capture_default_str();
   c.add_option("--integrators", integrators_,
                "Comma-separated integrators; the first is the baseline of the ratios")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"pt", "snee", "sla"}))
       ->capture_default_str();
   c.add_option("--time", seconds_, "Seconds per integrator (equal time)")
       ->check(CLI::PositiveNumber)
@@ -108,12 +98,7 @@ CompareCommand::CompareCommand(CLI::App& parent)
       ->check(CLI::IsMember({"pt", "snee"}))
       ->capture_default_str();
   c.add_option("--resolution", resolution_, "Image size WxH, overriding the camera's")
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            return parse_resolution(text) ? std::string()
-                                          : "expected WxH with positive sizes, got '" + text + "'";
-          },
-          "WxH"));
+      ->check(resolution_validator());
   c.add_option("--threads", threads_, "Worker threads, 0 = all")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
@@ -128,11 +113,6 @@ int CompareCommand::run() const {
   if (const auto size = parse_resolution(resolution_)) {
     scene.camera.width = size->width;
     scene.camera.height = size->height;
-  }
-  const std::vector<std::string> integrators = split_list(integrators_);
-  for (const std::string& name : integrators) {
-    if (name != "pt" && name != "snee" && name != "sla")
-      throw std::invalid_argument("unknown integrator '" + name + "' (expected pt, snee or sla)");
   }
   const std::string name = scene.name.empty() ? "scene" : scene.name;
   const fs::path dir = output_.empty() ? fs::path("out") / ("compare-" + name) : fs::path(output_);
@@ -158,7 +138,7 @@ int CompareCommand::run() const {
   }
 
   std::vector<Entry> entries;
-  for (const std::string& integrator : integrators) {
+  for (const std::string& integrator : integrators_) {
     RenderOptions o = base;
     o.integrator = integrator;
     if (spp_ > 0) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -21,7 +22,7 @@ class CompareCommand {
 
   CLI::App* command_;
   std::string scene_ = "builtin:sphere-cone-r0.04";
-  std::string integrators_ = "pt,snee";
+  std::vector<std::string> integrators_ = {"pt", "snee"};
   double seconds_ = 10;
   int spp_ = 0;
   std::string reference_;

@@ -75,12 +75,7 @@ RenderCommand::RenderCommand(CLI::App& parent)
   c.add_option("--stats", stats_, "Also write render statistics as JSON to this file");
   c.add_option("--resolution", resolution_,
                "Image size WxH, overriding the camera's (keeps its vertical field of view)")
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            return parse_resolution(text) ? std::string()
-                                          : "expected WxH with positive sizes, got '" + text + "'";
-          },
-          "WxH"));
+      ->check(resolution_validator());
   c.add_option("--max-depth", options_.max_depth,
                "Maximum scattering events per path [default: the scene's, else 1024]")
       ->check(integer_at_least(0));

@@ -25,4 +25,13 @@ std::optional<Resolution> parse_resolution(const std::string& text) {
   return r;
 }
 
+CLI::Validator resolution_validator() {
+  return CLI::Validator(
+      [](const std::string& text) {
+        return parse_resolution(text) ? std::string()
+                                      : "expected WxH with positive sizes, got '" + text + "'";
+      },
+      "WxH");
+}
+
 }  // namespace snee

@@ -4,6 +4,8 @@
 #include <optional>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 namespace snee {
 
 struct Resolution {
@@ -13,5 +15,7 @@ struct Resolution {
 
 // "640x480" -> {640, 480}; nullopt for anything else, including zero or absurd sizes.
 std::optional<Resolution> parse_resolution(const std::string& text);
+// The check of every command's `--resolution` option.
+CLI::Validator resolution_validator();
 
 }  // namespace snee

@@ -37,13 +37,7 @@ ScaleCommand::ScaleCommand(CLI::App& parent)
   CLI::App& c = *command_;
   c.add_option("SCENE", scene_, "JSON scene file or builtin:NAME")->capture_default_str();
   c.add_option("--threads", threads_, "Comma-separated thread counts, e.g. 1,2,4")
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            return parse_thread_counts(text)
-                       ? std::string()
-                       : "expected positive integers like 1,2, got '" + text + "'";
-          },
-          "LIST"))
+      ->check(thread_counts_validator())
       ->capture_default_str();
   c.add_option("--repeats", repeats_, "Renders per thread count; the median is reported")
       ->check(CLI::PositiveNumber)
@@ -52,12 +46,7 @@ ScaleCommand::ScaleCommand(CLI::App& parent)
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   c.add_option("--resolution", resolution_, "Image size WxH [default: the scene's]")
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            return parse_resolution(text) ? std::string()
-                                          : "expected WxH with positive sizes, got '" + text + "'";
-          },
-          "WxH"));
+      ->check(resolution_validator());
   c.add_option("--integrator", integrator_, "pt, snee or sla [default: the scene's]")
       ->check(CLI::IsMember({"pt", "snee", "sla"}));
   c.add_option("--schedule", schedule_, "megakernel, local or global")

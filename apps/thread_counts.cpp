@@ -19,4 +19,14 @@ std::optional<std::vector<int>> parse_thread_counts(const std::string& text) {
   return counts;
 }
 
+CLI::Validator thread_counts_validator() {
+  return CLI::Validator(
+      [](const std::string& text) {
+        return parse_thread_counts(text)
+                   ? std::string()
+                   : "expected positive integers like 1,2, got '" + text + "'";
+      },
+      "LIST");
+}
+
 }  // namespace snee

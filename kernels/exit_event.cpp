@@ -31,12 +31,11 @@ SneeSuffix exit_suffix(const KernelContext& ctx, Vec3 x_i, Vec3 omega_in, Vec3 x
 
 // Queues `unweighted` times the four-way weight of strategy st, chosen by V_first(x_i, x_k),
 // gated by the segments [first, first + count).
-void queue_weighted(const KernelContext& ctx, Strategy st, SneeSuffix s, uint32_t slot,
+void queue_weighted(const KernelContext& ctx, Strategy st, const SneeSuffix& s, uint32_t slot,
                     Rgb unweighted, uint32_t first, uint32_t count, ShadowQueue& shadow) {
-  s.v_first = true;
-  const float w_first = static_cast<float>(snee_exit_weight(st, s, ctx.snee));
-  s.v_first = false;
-  const float w_not_first = static_cast<float>(snee_exit_weight(st, s, ctx.snee));
+  const ExitWeights w = snee_exit_weights(st, s, ctx.snee);
+  const float w_first = static_cast<float>(w.if_first_hit);
+  const float w_not_first = static_cast<float>(w.if_not_first_hit);
   // V_first as a segment from x_i toward x_k that stops just short of it.
   const Vec3 to_k = s.x_k - s.x_i;
   const float dist = length(to_k);

@@ -2,20 +2,12 @@
 // count, the queue capacity (batch size), the tile size or how samples are cut into passes.
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
+#include "tests/support/render_helpers.h"
 
 namespace snee {
 namespace {
-
-bool identical(const Film& a, const Film& b) {
-  return a.mean.size() == b.mean.size() &&
-         std::memcmp(a.mean.data(), b.mean.data(), a.mean.size() * sizeof(Rgb)) == 0 &&
-         std::memcmp(a.variance_of_mean.data(), b.variance_of_mean.data(),
-                     a.mean.size() * sizeof(Rgb)) == 0;
-}
 
 class Determinism : public ::testing::TestWithParam<const char*> {};
 
@@ -41,13 +33,13 @@ TEST_P(Determinism, ThreadsBatchSizesAndTilesGiveIdenticalBytes) {
   other_tiles.samples_per_pass = 2;
   for (const RenderOptions& o : {two_threads, small_batches, other_tiles}) {
     const Film film = render(scene, o).film;
-    EXPECT_TRUE(identical(reference, film))
+    EXPECT_TRUE(test::bitwise_identical(reference, film))
         << "threads " << o.threads << " capacity " << o.queue_capacity << " tile " << o.tile_size;
   }
   // A different seed must change the image (guards against a test that compares constants).
   RenderOptions other_seed = base;
   other_seed.seed = 4;
-  EXPECT_FALSE(identical(reference, render(scene, other_seed).film));
+  EXPECT_FALSE(test::bitwise_identical(reference, render(scene, other_seed).film));
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, Determinism, ::testing::Values("pt", "snee", "sla"));

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -13,13 +12,6 @@
 
 namespace snee {
 namespace {
-
-bool identical(const Film& a, const Film& b) {
-  return a.mean.size() == b.mean.size() &&
-         std::memcmp(a.mean.data(), b.mean.data(), a.mean.size() * sizeof(Rgb)) == 0 &&
-         std::memcmp(a.variance_of_mean.data(), b.variance_of_mean.data(),
-                     a.mean.size() * sizeof(Rgb)) == 0;
-}
 
 Scene small_scene(const std::string& name, int resolution) {
   Scene scene = load_scene(name).scene;
@@ -56,7 +48,7 @@ TEST_P(Schedules, EveryScheduleAndThreadCountGivesIdenticalBytesOnAMesh) {
       o.schedule = schedule;
       o.threads = threads;
       const RenderResult result = render(scene, o);
-      EXPECT_TRUE(identical(reference.film, result.film))
+      EXPECT_TRUE(test::bitwise_identical(reference.film, result.film))
           << schedule << " with " << threads << " threads";
       EXPECT_EQ(result.stats.paths, reference.stats.paths) << schedule;
       EXPECT_EQ(result.stats.total_rays(), reference.stats.total_rays()) << schedule;
@@ -77,7 +69,8 @@ TEST_P(Schedules, WavefrontSchedulesAgreeBitwiseAndTheMegakernelWithinNoiseOnASp
     RenderOptions o = base;
     o.schedule = "global";
     o.threads = threads;
-    EXPECT_TRUE(identical(reference.film, render(scene, o).film)) << threads << " threads";
+    EXPECT_TRUE(test::bitwise_identical(reference.film, render(scene, o).film))
+        << threads << " threads";
   }
   RenderOptions o = base;
   o.schedule = "megakernel";

@@ -7,7 +7,10 @@
 namespace snee {
 
 Rgb suffix_integrand(const SneeSuffix& s, Rgb emitted) {
-  const SuffixGeometry g = suffix_geometry(s);
+  return suffix_integrand(s, suffix_geometry(s), emitted);
+}
+
+Rgb suffix_integrand(const SneeSuffix& s, const SuffixGeometry& g, Rgb emitted) {
   if (!g.valid || !(g.cos_o > 0) || !(g.cos_k_j > 0)) return Rgb(0.0f);
   const double phases = static_cast<double>(hg_phase(dot(s.omega_in, g.omega_ij), s.medium.g)) *
                         hg_phase(dot(g.omega_ij, g.omega_jk), s.medium.g);

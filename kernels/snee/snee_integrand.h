@@ -18,5 +18,7 @@ namespace snee {
 // channel; the suffix's phase functions, sigma_s(x_j) and transmittances are included,
 // sigma_s(x_i) is not (it belongs to the path throughput).
 Rgb suffix_integrand(const SneeSuffix& s, Rgb emitted);
+// The same with the suffix's geometry already derived (suffix_geometry(s)).
+Rgb suffix_integrand(const SneeSuffix& s, const SuffixGeometry& g, Rgb emitted);
 
 }  // namespace snee

@@ -122,7 +122,11 @@ double unidirectional_light_pdf(const SneeSuffix& s) {
 }
 
 StrategyPdfs strategy_pdfs(const SneeSuffix& s, const SneeOptions& options) {
-  const SuffixGeometry g = suffix_geometry(s);
+  return strategy_pdfs(s, suffix_geometry(s), options);
+}
+
+StrategyPdfs strategy_pdfs(const SneeSuffix& s, const SuffixGeometry& g,
+                           const SneeOptions& options) {
   StrategyPdfs out;
   out.handled = snee_can_produce(s);
   const auto set = [&](Strategy st, double p) { out.pdf[static_cast<int>(st)] = p; };

@@ -40,6 +40,9 @@ struct StrategyPdfs {
   double operator[](Strategy st) const { return pdf[static_cast<int>(st)]; }
 };
 StrategyPdfs strategy_pdfs(const SneeSuffix& s, const SneeOptions& options);
+// The same with the suffix's geometry already derived (suffix_geometry(s)).
+StrategyPdfs strategy_pdfs(const SneeSuffix& s, const SuffixGeometry& g,
+                           const SneeOptions& options);
 
 // Weight of strategy st for the suffix the pdfs describe: balance or power heuristic over the
 // strategies that compete for it (the enabled ones for handled suffixes, U_B and U_L otherwise);

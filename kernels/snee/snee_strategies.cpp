@@ -50,9 +50,10 @@ ShadowSegment segment_between(Vec3 from, Vec3 to) {
 SneeCandidate finish(Strategy st, const SneeSuffix& s, Rgb emitted, double sampling_pdf,
                      const SneeOptions& options, std::array<ShadowSegment, 3> segments) {
   if (!(sampling_pdf > 0) || !std::isfinite(sampling_pdf)) return {};
-  const double weight = mis_weight(st, strategy_pdfs(s, options), options);
+  const SuffixGeometry g = suffix_geometry(s);
+  const double weight = mis_weight(st, strategy_pdfs(s, g, options), options);
   if (!(weight > 0)) return {};
-  const Rgb f = suffix_integrand(s, emitted);
+  const Rgb f = suffix_integrand(s, g, emitted);
   const Rgb contribution = f * static_cast<float>(weight / sampling_pdf);
   if (is_black(contribution) || !is_finite(contribution)) return {};
   SneeCandidate c;
@@ -165,6 +166,16 @@ SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
 
 double snee_exit_weight(Strategy st, const SneeSuffix& s, const SneeOptions& options) {
   return mis_weight(st, strategy_pdfs(s, options), options);
+}
+
+ExitWeights snee_exit_weights(Strategy st, SneeSuffix s, const SneeOptions& options) {
+  const SuffixGeometry g = suffix_geometry(s);
+  ExitWeights w;
+  s.v_first = true;
+  w.if_first_hit = mis_weight(st, strategy_pdfs(s, g, options), options);
+  s.v_first = false;
+  w.if_not_first_hit = mis_weight(st, strategy_pdfs(s, g, options), options);
+  return w;
 }
 
 }  // namespace snee

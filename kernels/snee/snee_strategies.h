@@ -86,4 +86,12 @@ SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
 // when SNEE can produce the suffix, the tracer's plain two-way weight otherwise.
 double snee_exit_weight(Strategy st, const SneeSuffix& s, const SneeOptions& options);
 
+// Both weights an exit event needs before V_first(x_i, x_k) is known (s.v_first is ignored),
+// from one derivation of the suffix's geometry.
+struct ExitWeights {
+  double if_first_hit = 0;      // the four-way weight
+  double if_not_first_hit = 0;  // SNEE cannot produce the suffix: the tracer's two-way weight
+};
+ExitWeights snee_exit_weights(Strategy st, SneeSuffix s, const SneeOptions& options);
+
 }  // namespace snee

@@ -1,8 +1,16 @@
 #include "tests/support/render_helpers.h"
 
 #include <cmath>
+#include <cstring>
 
 namespace snee::test {
+
+bool bitwise_identical(const Film& a, const Film& b) {
+  return a.mean.size() == b.mean.size() && a.variance_of_mean.size() == b.variance_of_mean.size() &&
+         std::memcmp(a.mean.data(), b.mean.data(), a.mean.size() * sizeof(Rgb)) == 0 &&
+         std::memcmp(a.variance_of_mean.data(), b.variance_of_mean.data(),
+                     a.variance_of_mean.size() * sizeof(Rgb)) == 0;
+}
 
 Scene sphere_scene(const Material& material, const Medium& medium, int resolution) {
   Scene scene;

@@ -9,6 +9,9 @@
 
 namespace snee::test {
 
+// Same size and the same bits in every mean and variance value.
+bool bitwise_identical(const Film& a, const Film& b);
+
 // A unit sphere at the origin filled with `medium`, bounded by `material`, seen by a camera
 // that frames it, with no lights (add them).
 Scene sphere_scene(const Material& material, const Medium& medium, int resolution);
