@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "apps/stats_json.h"
+
 namespace snee {
 
 namespace {
@@ -161,9 +163,6 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
     const RenderStats& s = run.measurement.median();
     const Figures f = figures(run, r.raw);
     const auto ratio = vs_megakernel(r, run);
-    nlohmann::ordered_json rays = nlohmann::ordered_json::object();
-    for (int k = 0; k < kRayKinds; ++k) rays[ray_kind_name(static_cast<RayKind>(k))] = s.rays[k];
-    rays["total"] = s.total_rays();
     nlohmann::ordered_json stages = nlohmann::ordered_json::object();
     for (int i = 0; i < kStages; ++i) {
       stages[stage_name(static_cast<Stage>(i))] = {{"seconds", s.stage_seconds[i]},
@@ -181,7 +180,7 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
         {"paths", s.paths},
         {"paths_per_second", f.paths_per_second},
         {"paths_per_cpu_second", f.paths_per_cpu_second},
-        {"rays", rays},
+        {"rays", ray_counts_json(s)},
         {"mrays_per_second", by_kind(f.mrays)},
         {"mrays_per_cpu_second", by_kind(f.mrays_cpu)},
         {"ratio_to_raw_embree",

@@ -7,13 +7,17 @@
 
 namespace snee {
 
-nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
-                                  const RenderResult& result) {
-  const RenderStats& stats = result.stats;
+nlohmann::ordered_json ray_counts_json(const RenderStats& stats) {
   nlohmann::ordered_json rays = nlohmann::ordered_json::object();
   for (int k = 0; k < static_cast<int>(RayKind::kCount); ++k)
     rays[ray_kind_name(static_cast<RayKind>(k))] = stats.rays[k];
   rays["total"] = stats.total_rays();
+  return rays;
+}
+
+nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
+                                  const RenderResult& result) {
+  const RenderStats& stats = result.stats;
   nlohmann::ordered_json stages = nlohmann::ordered_json::object();
   for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
     stages[stage_name(static_cast<Stage>(s))] = stats.stage_seconds[s];
@@ -39,7 +43,7 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"pass_seconds", stats.pass_seconds},
       {"pass_cpu_seconds", stats.pass_cpu_seconds},
       {"stage_seconds", stages},
-      {"rays", rays},
+      {"rays", ray_counts_json(stats)},
       {"paths", stats.paths},
       {"mrays_per_second", stats.mrays_per_second()},
       {"path_state_bytes_per_slot", stats.path_state_bytes_per_slot},

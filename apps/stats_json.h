@@ -10,6 +10,9 @@
 
 namespace snee {
 
+// Rays traced by kind (camera, extension, shadow, probe) and their total.
+nlohmann::ordered_json ray_counts_json(const RenderStats& stats);
+
 nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
                                   const RenderResult& result);
 // Throws std::runtime_error naming the file if it cannot be written.
