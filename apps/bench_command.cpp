@@ -13,6 +13,7 @@
 #include "apps/stats_json.h"
 #include "apps/thread_counts.h"
 #include "kernels/path_state.h"
+#include "kernels/simd/arch.h"
 #include "scene/embree_scene.h"
 #include "scheduler/threading.h"
 
@@ -134,9 +135,9 @@ int BenchCommand::run() const {
               settings.repeats);
   for (const int t : settings.threads) std::printf(" %d", t);
   std::printf(
-      "\npath state: %zu bytes per slot; SIMD lane occupancy: n/a (not counted by the "
-      "kernels), queue occupancy is reported instead\n",
-      PathState::bytes_per_slot());
+      "\npath state: %zu bytes per slot; SIMD width %zu lanes (\"lanes\": occupancy of the "
+      "batched kernels' lanes)\n",
+      PathState::bytes_per_slot(), simd::kLanes);
 
   nlohmann::ordered_json workloads = nlohmann::ordered_json::array();
   for (BenchWorkload& w : set.workloads) {
@@ -207,9 +208,7 @@ int BenchCommand::run() const {
           {"raw_repeats", settings.raw_repeats},
           {"schedules", kSchedules}}},
         {"path_state_bytes_per_slot", PathState::bytes_per_slot()},
-        {"simd_lane_occupancy", nullptr},
-        {"simd_lane_occupancy_note",
-         "n/a: the stage kernels do not count active SIMD lanes; see queue_occupancy per run"},
+        {"simd_width", simd::kLanes},
         {"skipped", set.skipped},
         {"workloads", workloads},
         {"memory_vs_spp", memory},

@@ -120,19 +120,20 @@ void print_bench_result(std::FILE* out, const BenchResult& r) {
                    static_cast<double>(s.rays[k]) / paths);
     std::fprintf(out, "\n");
   }
-  std::fprintf(out, "   %-10s %3s %10s %11s %7s %8s %6s %6s %6s %6s %6s %7s %6s %6s\n", "schedule",
-               "thr", "paths/s", "paths/cpu-s", "Mrays/s", "Mr/cpu-s", "cpu%", "%raw1", "bound",
-               "occup", "batch", "RSS MiB", "xmega", "xm-cpu");
+  std::fprintf(out, "   %-10s %3s %10s %11s %7s %8s %6s %6s %6s %6s %6s %6s %7s %6s %6s\n",
+               "schedule", "thr", "paths/s", "paths/cpu-s", "Mrays/s", "Mr/cpu-s", "cpu%", "%raw1",
+               "bound", "occup", "lanes", "batch", "RSS MiB", "xmega", "xm-cpu");
   for (const BenchRun& run : r.runs) {
     const Figures f = figures(run, r.raw);
     const auto ratio = vs_megakernel(r, run);
     std::fprintf(out,
-                 "   %-10s %3d %10.0f %11.0f %7.2f %8.2f %5.0f%% %5.0f%% %5.0f%% %6.3f %6.0f %7.1f "
-                 "%6.2f %6.2f\n",
+                 "   %-10s %3d %10.0f %11.0f %7.2f %8.2f %5.0f%% %5.0f%% %5.0f%% %6.3f %6.3f %6.0f "
+                 "%7.1f %6.2f %6.2f\n",
                  run.schedule.c_str(), run.threads, f.paths_per_second, f.paths_per_cpu_second,
                  f.mrays[kRayKinds], f.mrays_cpu[kRayKinds], 100 * f.cpu_share,
                  100 * f.vs_closest_single, 100 * f.traversal_bound,
-                 run.measurement.median().queue_occupancy, f.extend_batch,
+                 run.measurement.median().queue_occupancy,
+                 run.measurement.median().all_simd_lanes().occupancy(), f.extend_batch,
                  run.measurement.peak_memory_mib(), ratio[0], ratio[1]);
   }
   // Short labels in Stage order.
@@ -191,6 +192,7 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
         {"other_share_of_thread_time", f.other_share},
         {"queue_capacity", run.queue_capacity},
         {"queue_occupancy", s.queue_occupancy},
+        {"simd", simd_lanes_json(s)},
         {"mean_extend_batch", f.extend_batch},
         {"path_state_bytes_per_slot", s.path_state_bytes_per_slot},
         {"peak_memory_mib", run.measurement.peak_memory_mib()},

@@ -15,6 +15,19 @@ nlohmann::ordered_json ray_counts_json(const RenderStats& stats) {
   return rays;
 }
 
+nlohmann::ordered_json simd_lanes_json(const RenderStats& stats) {
+  const auto lanes = [](const LaneCount& c) {
+    return nlohmann::ordered_json{
+        {"active_lanes", c.active}, {"lanes_run", c.run}, {"occupancy", c.occupancy()}};
+  };
+  nlohmann::ordered_json kernels = nlohmann::ordered_json::object();
+  for (int k = 0; k < kBatchedKernels; ++k)
+    kernels[batched_kernel_name(static_cast<BatchedKernel>(k))] = lanes(stats.simd_lanes[k]);
+  return {{"width", stats.simd_width},
+          {"lane_occupancy", stats.all_simd_lanes().occupancy()},
+          {"kernels", kernels}};
+}
+
 nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
                                   const RenderResult& result) {
   const RenderStats& stats = result.stats;
@@ -48,6 +61,7 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"mrays_per_second", stats.mrays_per_second()},
       {"path_state_bytes_per_slot", stats.path_state_bytes_per_slot},
       {"queue_occupancy", stats.queue_occupancy},
+      {"simd", simd_lanes_json(stats)},
       {"snee_options",
        {{"probe", options.snee.probe == ProbeDirections::kPhaseFunction ? "phase" : "uniform"},
         {"distance_mix", options.snee.c_exponential},

@@ -15,6 +15,7 @@ StageQueues::StageQueues(size_t slots)
       probe(slots),
       subdivide(slots),
       retire(slots),
+      flights(slots),
       rays(slots),
       shadow(slots * 8) {}
 
@@ -54,6 +55,7 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
     chunk.store(state.dir_x, d.x);
     chunk.store(state.dir_y, d.y);
     chunk.store(state.dir_z, d.z);
+    counters.count_lanes(BatchedKernel::kCameraRays, count, simd::kLanes);
   }
   for (size_t i = 0; i < n; ++i) q.extend.push(slots[i]);
   counters.rays[0] += n;

@@ -17,6 +17,18 @@ const char* integrator_name(Integrator i) {
   return "?";
 }
 
+const char* batched_kernel_name(BatchedKernel k) {
+  switch (k) {
+    case BatchedKernel::kCameraRays:
+      return "generate";
+    case BatchedKernel::kMediumFlights:
+      return "medium_event";
+    case BatchedKernel::kCount:
+      break;
+  }
+  return "?";
+}
+
 Integrator parse_integrator(const std::string& name) {
   if (name == "pt") return Integrator::kPathTracer;
   if (name == "snee") return Integrator::kSnee;
@@ -29,6 +41,10 @@ void KernelCounters::add(const KernelCounters& o) {
   for (size_t i = 0; i < snee.size(); ++i) snee[i] += o.snee[i];
   paths += o.paths;
   nonfinite_samples += o.nonfinite_samples;
+  for (size_t i = 0; i < lanes.size(); ++i) {
+    lanes[i].active += o.lanes[i].active;
+    lanes[i].run += o.lanes[i].run;
+  }
 }
 
 KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l,

@@ -42,13 +42,30 @@ struct MediumInfo {
   bool straight_nee;
 };
 
+// The stage kernels that run their queue in SIMD chunks, for lane-occupancy counters.
+enum class BatchedKernel : int { kCameraRays, kMediumFlights, kCount };
+inline constexpr int kBatchedKernels = static_cast<int>(BatchedKernel::kCount);
+const char* batched_kernel_name(BatchedKernel k);  // the stage's name: "generate", "medium_event"
+
+// Lanes that held a queued slot, and lanes computed (a short chunk still runs at full width).
+struct LaneCount {
+  uint64_t active = 0;
+  uint64_t run = 0;
+  double occupancy() const { return run > 0 ? static_cast<double>(active) / run : 0.0; }
+};
+
 // Counters kept per thread and summed at the end; indices follow RayKind / SneeCounter.
 struct KernelCounters {
   std::array<uint64_t, 4> rays{};  // camera, extension, shadow, probe
   uint64_t paths = 0;
   uint64_t nonfinite_samples = 0;
   SneeCounters snee{};
+  std::array<LaneCount, kBatchedKernels> lanes{};
   void count(SneeCounter c, uint64_t n = 1) { snee[static_cast<int>(c)] += n; }
+  void count_lanes(BatchedKernel k, uint64_t active, uint64_t width) {
+    lanes[static_cast<int>(k)].active += active;
+    lanes[static_cast<int>(k)].run += width;
+  }
   void add(const KernelCounters& o);
 };
 

@@ -1,11 +1,112 @@
+#include <algorithm>
+
 #include "kernels/medium/free_flight.h"
 #include "kernels/medium/henyey_greenstein.h"
 #include "kernels/path_ops.h"
+#include "kernels/simd/free_flight_batch.h"
+#include "kernels/simd/hg_sample_batch.h"
+#include "kernels/simd/philox_batch.h"
+#include "kernels/simd/slot_chunk.h"
 #include "kernels/stages.h"
 
 namespace snee {
 
 namespace {
+
+using simd::FloatBatch;
+using simd::UintBatch;
+using simd::Vec3Batch;
+
+struct MediumLanes {
+  Vec3Batch sigma_s, sigma_t;
+  FloatBatch g;
+};
+
+// The medium parameters of every lane; one broadcast when the chunk is in one medium (the
+// common case: one translucent object).
+MediumLanes load_media(const KernelContext& ctx, const PathState& state,
+                       const simd::SlotChunk& chunk) {
+  alignas(64) int32_t index[simd::kLanes];
+  chunk.load(state.medium).store_aligned(index);
+  if (std::all_of(index, index + simd::kLanes, [&](int32_t i) { return i == index[0]; })) {
+    const MediumInfo& m = ctx.media[static_cast<size_t>(index[0])];
+    return {{FloatBatch(m.sigma_s.x), FloatBatch(m.sigma_s.y), FloatBatch(m.sigma_s.z)},
+            {FloatBatch(m.sigma_t.x), FloatBatch(m.sigma_t.y), FloatBatch(m.sigma_t.z)},
+            FloatBatch(m.g)};
+  }
+  alignas(64) float v[7][simd::kLanes];
+  for (size_t l = 0; l < simd::kLanes; ++l) {
+    const MediumInfo& m = ctx.media[static_cast<size_t>(index[l])];
+    const float values[7] = {m.sigma_s.x, m.sigma_s.y, m.sigma_s.z, m.sigma_t.x,
+                             m.sigma_t.y, m.sigma_t.z, m.g};
+    for (int c = 0; c < 7; ++c) v[c][l] = values[c];
+  }
+  const auto lane = [&](int c) { return FloatBatch::load_aligned(v[c]); };
+  return {{lane(0), lane(1), lane(2)}, {lane(3), lane(4), lane(5)}, lane(6)};
+}
+
+Vec3Batch mul(const Vec3Batch& a, const Vec3Batch& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+Vec3Batch div(const Vec3Batch& a, FloatBatch s) {
+  return {a.x / s, a.y / s, a.z / s};
+}
+Vec3Batch select(FloatBatch::batch_bool_type m, const Vec3Batch& a, const Vec3Batch& b) {
+  return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
+}
+
+// The straight-line part of a medium event, for one chunk of the queue at position k: free
+// flight with path-level spectral MIS, the throughput and channel probabilities it leaves
+// (at the scattering point, or at the boundary it reached), and the phase-sampled direction
+// from the scattering point. Every lane is computed; the per-slot pass decides what is used.
+void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chunk,
+         FlightResults& out, size_t k) {
+  const MediumLanes m = load_media(ctx, state, chunk);
+  const UintBatch pixel = chunk.load(state.pixel), sample = chunk.load(state.sample);
+  const UintBatch event = chunk.load(state.event);
+  const simd::RandomBlockBatch rf =
+      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kFreeFlight);
+  const simd::RandomBlockBatch rp =
+      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kPhase);
+
+  const Vec3Batch p{chunk.load(state.channel_p_r), chunk.load(state.channel_p_g),
+                    chunk.load(state.channel_p_b)};
+  const Vec3Batch beta{chunk.load(state.throughput_r), chunk.load(state.throughput_g),
+                       chunk.load(state.throughput_b)};
+  const FloatBatch t = simd::free_flight_sample(m.sigma_t, p, rf.u[0], rf.u[1]);
+  const FloatBatch t_hit = chunk.load(state.hit_t);
+  const auto scattered = t < t_hit;
+  const auto crossed = !scattered && xsimd::isfinite(t_hit);
+
+  // Reaching the boundary: transmittance over the survival probability.
+  const Vec3Batch tr_hit = simd::transmittance(m.sigma_t, t_hit);
+  const FloatBatch survival = simd::dot(p, tr_hit);
+  // Scattering at t: sigma_s T(t) / pdf(t) per channel, and each channel's share of pdf(t).
+  const Vec3Batch tr = simd::transmittance(m.sigma_t, t);
+  const Vec3Batch channel_pdfs = simd::free_flight_channel_pdfs(m.sigma_t, tr);
+  const FloatBatch pdf = simd::dot(p, channel_pdfs);
+  const Vec3Batch beta_out = select(scattered, div(mul(mul(beta, m.sigma_s), tr), pdf),
+                                    select(crossed, div(mul(beta, tr_hit), survival), beta));
+  const Vec3Batch p_out = select(scattered, div(mul(p, channel_pdfs), pdf),
+                                 select(crossed, div(mul(p, tr_hit), survival), p));
+  chunk.store(state.throughput_r, beta_out.x);
+  chunk.store(state.throughput_g, beta_out.y);
+  chunk.store(state.throughput_b, beta_out.z);
+  chunk.store(state.channel_p_r, p_out.x);
+  chunk.store(state.channel_p_g, p_out.y);
+  chunk.store(state.channel_p_b, p_out.z);
+
+  const Vec3Batch w{chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)};
+  const simd::HgSampleBatch phase = simd::hg_sample(w, m.g, rp.u[0], rp.u[1]);
+  t.store_aligned(out.t.data() + k);
+  (chunk.load(state.origin_x) + w.x * t).store_aligned(out.x.data() + k);
+  (chunk.load(state.origin_y) + w.y * t).store_aligned(out.y.data() + k);
+  (chunk.load(state.origin_z) + w.z * t).store_aligned(out.z.data() + k);
+  phase.direction.x.store_aligned(out.wx.data() + k);
+  phase.direction.y.store_aligned(out.wy.data() + k);
+  phase.direction.z.store_aligned(out.wz.data() + k);
+  phase.pdf.store_aligned(out.phase_pdf.data() + k);
+}
 
 // Next-event estimation from a medium vertex along a straight shadow ray. Worth a ray only when
 // the light can be reached without refraction (null boundaries), or under the straight-line
@@ -27,36 +128,33 @@ void medium_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 x, 
 
 }  // namespace
 
+// Two passes: the flights of the whole queue in SIMD chunks (fly), then, per slot in queue
+// order, what branches: routing, vertex memory, depth limit, medium NEE, roulette and SNEE.
 void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
                   KernelCounters& counters) {
-  (void)counters;
-  for (const uint32_t s : q.medium) {
-    const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
-    const RandomBlock r = draw(ctx, state, s, RngPurpose::kFreeFlight);
-    const Rgb channel_p = state.channel_probabilities(s);
-    const float t = free_flight_sample(m.sigma_t, channel_p, r.u[0], r.u[1]);
+  const size_t n = q.medium.size();
+  FlightResults& flights = q.flights;
+  for (size_t k = 0; k < n; k += simd::kLanes) {
+    const size_t count = std::min(simd::kLanes, n - k);
+    fly(ctx, state, simd::SlotChunk(q.medium.begin() + k, count), flights, k);
+    counters.count_lanes(BatchedKernel::kMediumFlights, count, simd::kLanes);
+  }
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t s = q.medium[k];
     const float t_hit = state.hit_t[s];
-    if (!(t < t_hit)) {
-      // The flight reached the boundary: weight by transmittance over the survival probability.
+    if (!(flights.t[k] < t_hit)) {
+      // The flight reached the boundary (throughput already weighted), or left a medium
+      // without a closed boundary.
       if (std::isfinite(t_hit)) {
-        const Rgb tr = transmittance(m.sigma_t, t_hit);
-        const float survival = free_flight_survival(m.sigma_t, channel_p, t_hit);
-        state.set_throughput(s, state.throughput(s) * tr / survival);
-        state.set_channel_probabilities(s, channel_p * tr / survival);
         q.surface.push(s);
       } else {
-        q.escaped.push(s);  // a medium without a closed boundary: the ray leaves the scene
+        q.escaped.push(s);
       }
       continue;
     }
-    // Scattering vertex x: throughput picks up sigma_s T(t) / pdf(t) per channel, and each
-    // channel's probability its share of pdf(t).
+    const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
     const Vec3 w_before = state.direction(s);
-    const Vec3 x = state.origin(s) + w_before * t;
-    const Rgb channel_pdfs = free_flight_channel_pdfs(m.sigma_t, t);
-    const float pdf = dot(channel_p, channel_pdfs);
-    state.set_throughput(s, state.throughput(s) * m.sigma_s * transmittance(m.sigma_t, t) / pdf);
-    state.set_channel_probabilities(s, channel_p * channel_pdfs / pdf);
+    const Vec3 x{flights.x[k], flights.y[k], flights.z[k]};
     state.depth[s] += 1;
     state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
     state.push_vertex(s, x, w_before, true);
@@ -66,12 +164,8 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     }
     const bool straight_nee = m.straight_nee || ctx.integrator == Integrator::kStraightLine;
     if (straight_nee) medium_nee(ctx, state, s, x, w_before, m, q.shadow);
-
-    const RandomBlock rp = draw(ctx, state, s, RngPurpose::kPhase);
-    float phase_pdf = 0;
-    const Vec3 w_after = hg_sample(w_before, m.g, {rp.u[0], rp.u[1]}, &phase_pdf);
     // The phase weight f/pdf is exactly 1 for HG; the pdf is kept for MIS at the next light hit.
-    state.mis_pdf[s] = straight_nee ? phase_pdf : 0.0f;
+    state.mis_pdf[s] = straight_nee ? flights.phase_pdf[k] : 0.0f;
     if (!survive_russian_roulette(ctx, state, s)) {
       q.retire.push(s);
       continue;
@@ -79,7 +173,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     // SNEE runs after roulette on the survivors with their rescaled throughput (unbiased);
     // the probe stage reads x_i from the path's vertex memory and draws at this event.
     if (ctx.integrator == Integrator::kSnee && !m.straight_nee) q.probe.push(s);
-    state.set_ray(s, x, w_after);
+    state.set_ray(s, x, {flights.wx[k], flights.wy[k], flights.wz[k]});
     state.event[s] += 1;
     q.extend.push(s);
   }

@@ -87,6 +87,27 @@ class ExitPointQueue {
   size_t size_ = 0;
 };
 
+// What the batched part of medium_event computed for each entry of its queue (by queue
+// position, so a chunk is stored with whole vector stores, a short last chunk included): the
+// sampled flight distance, the scattering point it reaches and the phase-sampled direction from
+// there, with its pdf.
+struct FlightResults {
+  explicit FlightResults(size_t capacity) : FlightResults(capacity, (capacity + 15) / 16 * 16) {}
+  AlignedArray<float> t, x, y, z, wx, wy, wz, phase_pdf;
+
+ private:
+  // Rounded up to 16 entries, a whole number of batches at every x86 SIMD width.
+  FlightResults(size_t, size_t padded)
+      : t(padded),
+        x(padded),
+        y(padded),
+        z(padded),
+        wx(padded),
+        wy(padded),
+        wz(padded),
+        phase_pdf(padded) {}
+};
+
 // Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.
 class RayBatch {
  public:

@@ -19,6 +19,7 @@ struct StageQueues {
   SlotQueue probe;           // SNEE: medium vertices waiting for an exit-point probe
   ExitPointQueue subdivide;  // SNEE: probes that found the medium's exit, waiting for x_j
   SlotQueue retire;          // finished paths
+  FlightResults flights;     // scratch of medium_event's batched part
   RayBatch rays;             // scratch for batched Embree queries
   ShadowQueue shadow;
 };

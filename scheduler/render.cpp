@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "kernels/lights/light_table.h"
+#include "kernels/simd/arch.h"
 #include "scene/embree_scene.h"
 #include "scheduler/pass_schedules.h"
 #include "scheduler/schedule.h"
@@ -35,6 +36,15 @@ uint64_t RenderStats::total_rays() const {
   uint64_t total = 0;
   for (const uint64_t r : rays) total += r;
   return total;
+}
+
+LaneCount RenderStats::all_simd_lanes() const {
+  LaneCount all;
+  for (const LaneCount& k : simd_lanes) {
+    all.active += k.active;
+    all.run += k.run;
+  }
+  return all;
 }
 
 namespace {
@@ -204,6 +214,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
   stats.paths = counters.paths;
   stats.nonfinite_samples = counters.nonfinite_samples;
   stats.snee = counters.snee;
+  stats.simd_lanes = counters.lanes;
+  stats.simd_width = simd::kLanes;
   film.meta.spp = options.spp;
   film.meta.integrator = integrator_name(integrator);
   film.meta.seed = options.seed;

@@ -7,6 +7,7 @@
 #include <functional>
 #include <string>
 
+#include "kernels/kernel_context.h"
 #include "kernels/snee/snee_options.h"
 #include "kernels/snee_counters.h"
 #include "scene/film.h"
@@ -63,9 +64,12 @@ struct RenderStats {
   uint64_t paths = 0;
   uint64_t nonfinite_samples = 0;  // dropped (counted, never averaged in)
   SneeCounters snee{};
+  std::array<LaneCount, kBatchedKernels> simd_lanes{};  // by BatchedKernel
+  size_t simd_width = 0;                                // lanes per SIMD batch in this build
   size_t path_state_bytes_per_slot = 0;
   int threads = 0;
   uint64_t total_rays() const;
+  LaneCount all_simd_lanes() const;
   double mrays_per_second() const { return seconds > 0 ? total_rays() / seconds * 1e-6 : 0; }
 };
 

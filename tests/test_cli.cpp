@@ -158,8 +158,13 @@ TEST_F(CliTest, TinyRenderWritesExrPngAndStats) {
   const auto stats = nlohmann::json::parse(read_file(path("s.json")));
   for (const char* key : {"version", "scene", "integrator", "spp", "seed", "threads", "resolution",
                           "seconds", "stage_seconds", "rays", "paths", "mrays_per_second",
-                          "path_state_bytes_per_slot", "schedule", "queue_occupancy"})
+                          "path_state_bytes_per_slot", "schedule", "queue_occupancy", "simd"})
     EXPECT_TRUE(stats.contains(key)) << key;
+  // The camera kernel started every path: 16 x 16 x 2 active lanes, in whole batches.
+  const auto& camera_lanes = stats["simd"]["kernels"]["generate"];
+  EXPECT_EQ(camera_lanes["active_lanes"].get<uint64_t>(), 16u * 16u * 2u);
+  EXPECT_EQ(camera_lanes["lanes_run"].get<uint64_t>() % stats["simd"]["width"].get<uint64_t>(), 0u);
+  EXPECT_TRUE(stats["simd"]["kernels"].contains("medium_event"));
   EXPECT_EQ(stats["spp"], 2);
   EXPECT_EQ(stats["resolution"]["width"], 16);
   EXPECT_EQ(stats["resolution"]["height"], 16);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "kernels/medium/free_flight.h"
+#include "kernels/simd/frame_batch.h"
 #include "kernels/simd/free_flight_batch.h"
 #include "tests/support/ulp.h"
 
@@ -22,6 +23,7 @@ constexpr float kMaxSigma = 50.0f;
 constexpr int64_t kSampleUlps = 2;         // -log1p(-u) / sigma
 constexpr int64_t kTransmittanceUlps = 2;  // exp(-sigma d)
 constexpr int64_t kMixtureUlps = 4;        // pdf and survival: sums of three exp terms
+constexpr int64_t kChannelPdfUlps = 2;     // sigma exp(-sigma t)
 
 struct Lanes {
   alignas(64) float v[kLanes];
@@ -97,6 +99,52 @@ TEST_F(FreeFlightBatch, AgreesWithScalarWithinUlpBounds) {
       trans.add(tx.v[i], want_tr.x);
       trans.add(ty.v[i], want_tr.y);
       trans.add(tz.v[i], want_tr.z);
+    }
+  }
+}
+
+// The path-level mixture medium_event runs: weighted channel choice, per-channel pdfs formed
+// from the transmittance, and the weighted pdf and survival as dot products with p.
+TEST_F(FreeFlightBatch, PathLevelMixtureAgreesWithScalarWithinUlpBounds) {
+  UlpCheck sample{"sample", kSampleUlps, 0.0f},
+      channel_pdf{"channel pdf", kChannelPdfUlps, kMaxSigma * FLT_MIN},
+      pdf{"pdf", kMixtureUlps, kMaxSigma * FLT_MIN}, survival{"survival", kMixtureUlps, FLT_MIN};
+  for (int trial = 0; trial < 500000; ++trial) {
+    Lanes sr, sg, sb, pr, pg, pb, uc, u, d;
+    for (size_t i = 0; i < kLanes; ++i) {
+      sr.v[i] = sigma();
+      sg.v[i] = sigma();
+      sb.v[i] = sigma();
+      const Rgb w(unit() + 0.01f, unit() + 0.01f, trial % 5 == 0 ? 0.0f : unit());
+      const float total = w.x + w.y + w.z;
+      pr.v[i] = w.x / total;
+      pg.v[i] = w.y / total;
+      pb.v[i] = w.z / total;
+      uc.v[i] = unit();
+      u.v[i] = unit();
+      d.v[i] = distance();
+    }
+    const simd::Vec3Batch sigma_t{sr.batch(), sg.batch(), sb.batch()};
+    const simd::Vec3Batch p{pr.batch(), pg.batch(), pb.batch()};
+    const Lanes t = to_lanes(simd::free_flight_sample(sigma_t, p, uc.batch(), u.batch()));
+    const simd::Vec3Batch tr = simd::transmittance(sigma_t, d.batch());
+    const simd::Vec3Batch q = simd::free_flight_channel_pdfs(sigma_t, tr);
+    const Lanes qx = to_lanes(q.x), qy = to_lanes(q.y), qz = to_lanes(q.z);
+    const Lanes mix = to_lanes(simd::dot(p, q)), surv = to_lanes(simd::dot(p, tr));
+    for (size_t i = 0; i < kLanes; ++i) {
+      const Rgb st(sr.v[i], sg.v[i], sb.v[i]), pi(pr.v[i], pg.v[i], pb.v[i]);
+      const float want_t = free_flight_sample(st, pi, uc.v[i], u.v[i]);
+      if (std::isinf(want_t)) {
+        ASSERT_EQ(t.v[i], want_t);
+      } else {
+        sample.add(t.v[i], want_t);
+      }
+      const Rgb want_q = free_flight_channel_pdfs(st, d.v[i]);
+      channel_pdf.add(qx.v[i], want_q.x);
+      channel_pdf.add(qy.v[i], want_q.y);
+      channel_pdf.add(qz.v[i], want_q.z);
+      pdf.add(mix.v[i], free_flight_pdf(st, pi, d.v[i]));
+      survival.add(surv.v[i], free_flight_survival(st, pi, d.v[i]));
     }
   }
 }

@@ -60,8 +60,8 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
   EXPECT_NE(output_.find("megakernel"), std::string::npos) << output_;
   const nlohmann::json b = json("b.json");
   expect_keys(b,
-              {"version", "date", "machine", "settings", "path_state_bytes_per_slot",
-               "simd_lane_occupancy", "skipped", "workloads", "memory_vs_spp"},
+              {"version", "date", "machine", "settings", "path_state_bytes_per_slot", "simd_width",
+               "skipped", "workloads", "memory_vs_spp"},
               "bench");
   EXPECT_GT(b["path_state_bytes_per_slot"].get<int>(), 0);
   ASSERT_GE(b["workloads"].size(), 5u);
@@ -78,13 +78,23 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
     ASSERT_EQ(w["runs"].size(), 6u) << name;  // 3 schedules x 2 thread counts
     for (const auto& run : w["runs"]) {
       const std::string where = name + " " + run["schedule"].get<std::string>();
-      expect_keys(
-          run,
-          {"threads", "seconds", "cpu_seconds", "cpu_share", "repeat_seconds", "paths",
-           "paths_per_second", "paths_per_cpu_second", "rays", "mrays_per_second",
-           "mrays_per_cpu_second", "ratio_to_raw_embree", "vs_megakernel", "stages",
-           "queue_capacity", "queue_occupancy", "path_state_bytes_per_slot", "peak_memory_mib"},
-          where);
+      expect_keys(run,
+                  {"threads", "seconds", "cpu_seconds", "cpu_share", "repeat_seconds", "paths",
+                   "paths_per_second", "paths_per_cpu_second", "rays", "mrays_per_second",
+                   "mrays_per_cpu_second", "ratio_to_raw_embree", "vs_megakernel", "stages",
+                   "queue_capacity", "queue_occupancy", "simd", "path_state_bytes_per_slot",
+                   "peak_memory_mib"},
+                  where);
+      // Every path starts in the batched camera kernel, so lanes ran and some held a slot; a
+      // one-slot megakernel unit fills one lane of each batch.
+      const auto& lanes = run["simd"];
+      EXPECT_EQ(lanes["width"], b["simd_width"]) << where;
+      const double occupancy = lanes["lane_occupancy"].get<double>();
+      EXPECT_GT(occupancy, 0.0) << where;
+      EXPECT_LE(occupancy, 1.0) << where;
+      if (run["schedule"] == "megakernel") {
+        EXPECT_DOUBLE_EQ(occupancy, 1.0 / b["simd_width"].get<double>()) << where;
+      }
       for (const char* kind : {"camera", "extension", "shadow", "probe", "total"})
         EXPECT_TRUE(run["mrays_per_second"].contains(kind)) << where << " " << kind;
       expect_keys(run["stages"]["extend"], {"seconds", "calls", "share_of_thread_time"}, where);

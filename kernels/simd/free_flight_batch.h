@@ -24,6 +24,16 @@ inline FloatBatch free_flight_sample(const Vec3Batch& sigma_t, FloatBatch u_chan
                        FloatBatch(std::numeric_limits<float>::infinity()));
 }
 
+// The path-level mixture with channel probabilities p (medium/free_flight.h): the channel is
+// the first whose cumulative probability exceeds u_channel, as in the scalar function.
+inline FloatBatch free_flight_sample(const Vec3Batch& sigma_t, const Vec3Batch& p,
+                                     FloatBatch u_channel, FloatBatch u) {
+  const FloatBatch sigma = xsimd::select(
+      u_channel < p.x, sigma_t.x, xsimd::select(u_channel < p.x + p.y, sigma_t.y, sigma_t.z));
+  return xsimd::select(sigma > FloatBatch(0.0f), -xsimd::log1p(-u) / sigma,
+                       FloatBatch(std::numeric_limits<float>::infinity()));
+}
+
 inline FloatBatch free_flight_pdf(const Vec3Batch& sigma_t, FloatBatch t) {
   const auto term = [t](FloatBatch sigma) {
     return xsimd::select(sigma > FloatBatch(0.0f), sigma * xsimd::exp(-sigma * t),
@@ -36,6 +46,15 @@ inline FloatBatch free_flight_survival(const Vec3Batch& sigma_t, FloatBatch d) {
   return (channel_transmittance(sigma_t.x, d) + channel_transmittance(sigma_t.y, d) +
           channel_transmittance(sigma_t.z, d)) *
          FloatBatch(1.0f / 3.0f);
+}
+
+// Per-channel densities sigma_c exp(-sigma_c t), from the channels' transmittance tr = T(t)
+// (the same product the scalar free_flight_channel_pdfs forms).
+inline Vec3Batch free_flight_channel_pdfs(const Vec3Batch& sigma_t, const Vec3Batch& tr) {
+  const auto term = [](FloatBatch sigma, FloatBatch t_c) {
+    return xsimd::select(sigma > FloatBatch(0.0f), sigma * t_c, FloatBatch(0.0f));
+  };
+  return {term(sigma_t.x, tr.x), term(sigma_t.y, tr.y), term(sigma_t.z, tr.z)};
 }
 
 inline Vec3Batch transmittance(const Vec3Batch& sigma_t, FloatBatch d) {

@@ -1,0 +1,36 @@
+// hg_sample (medium/henyey_greenstein.cpp) for a batch of lanes. The polar angle, the frame and
+// the pdf are the scalar operations in the same order; only the azimuth's cosine and sine come
+// from xsimd's sincos instead of libm's, so directions agree with the scalar ones to a few units
+// in the last place of 1 (bound in README.md, checked by tests/test_shading_batch.cpp) and the
+// pdf, which does not depend on the azimuth, bit for bit.
+#pragma once
+
+#include "kernels/simd/frame_batch.h"
+#include "kernels/simd/fresnel_batch.h"
+#include "kernels/simd/hg_phase_batch.h"
+
+namespace snee::simd {
+
+struct HgSampleBatch {
+  Vec3Batch direction;
+  FloatBatch pdf;
+};
+
+inline HgSampleBatch hg_sample(const Vec3Batch& w_before, FloatBatch g, FloatBatch u0,
+                               FloatBatch u1) {
+  const FloatBatch one(1.0f), half(0.5f);
+  const FloatBatch s = FloatBatch(2.0f) * u0 - one;
+  const FloatBatch num =
+      s + g * (half * (FloatBatch(3.0f) + s * s) + g * (s + half * g * (s * s - one)));
+  const FloatBatch den = one + g * s;
+  const FloatBatch cos_theta = clamp(num / (den * den), FloatBatch(-1.0f), one);
+  // safe_sqrt's std::max(0, x), NaN included.
+  const FloatBatch sin2 = one - cos_theta * cos_theta;
+  const FloatBatch sin_theta =
+      xsimd::sqrt(xsimd::select(FloatBatch(0.0f) < sin2, sin2, FloatBatch(0.0f)));
+  const auto [sin_phi, cos_phi] = xsimd::sincos(FloatBatch(2.0f * kPi) * u1);
+  const Vec3Batch local{sin_theta * cos_phi, sin_theta * sin_phi, cos_theta};
+  return {FrameBatch::from_normal(w_before).to_world(local), hg_phase(cos_theta, g)};
+}
+
+}  // namespace snee::simd
