@@ -43,9 +43,10 @@ struct MediumInfo {
 };
 
 // The stage kernels that run their queue in SIMD chunks, for lane-occupancy counters.
-enum class BatchedKernel : int { kCameraRays, kMediumFlights, kCount };
+enum class BatchedKernel : int { kCameraRays, kMediumFlights, kProbeDirections, kCount };
 inline constexpr int kBatchedKernels = static_cast<int>(BatchedKernel::kCount);
-const char* batched_kernel_name(BatchedKernel k);  // the stage's name: "generate", "medium_event"
+// The stage's name: "generate", "medium_event", "snee_probe".
+const char* batched_kernel_name(BatchedKernel k);
 
 // Lanes that held a queued slot, and lanes computed (a short chunk still runs at full width).
 struct LaneCount {

@@ -1,22 +1,50 @@
+#include <algorithm>
+
+#include "kernels/medium_lanes.h"
 #include "kernels/path_ops.h"
+#include "kernels/simd/hg_sample_batch.h"
+#include "kernels/simd/philox_batch.h"
+#include "kernels/simd/sampling_batch.h"
 #include "kernels/snee/probe.h"
 #include "kernels/stages.h"
 
 namespace snee {
 
+namespace {
+
+// probe_direction_sample (snee/probe.cpp) for one chunk of the probe queue.
+simd::Vec3Batch probe_directions(const KernelContext& ctx, const PathState& state,
+                                 const simd::SlotChunk& chunk) {
+  // x_i is the path's newest vertex (x_j of its memory): medium_event already pushed it and
+  // advanced the event counter past it, so the draw is keyed by the event before.
+  const simd::RandomBlockBatch r = simd::random_block(
+      ctx.seed, chunk.load(state.pixel), chunk.load(state.sample),
+      chunk.load(state.event) - simd::UintBatch(1u), RngPurpose::kSneeProbe);
+  if (ctx.snee.probe == ProbeDirections::kUniformSphere)
+    return simd::sample_uniform_sphere(r.u[0], r.u[1]);
+  const simd::Vec3Batch w_in{chunk.load(state.wjn_x), chunk.load(state.wjn_y),
+                             chunk.load(state.wjn_z)};
+  return simd::hg_sample(w_in, load_media(ctx, state, chunk).g, r.u[0], r.u[1]).direction;
+}
+
+}  // namespace
+
 void snee_probe(const KernelContext& ctx, PathState& state, StageQueues& q,
                 KernelCounters& counters) {
   RayBatch& rays = q.rays;
   rays.clear();
-  for (const uint32_t s : q.probe) {
-    const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
-    // x_i is the path's newest vertex (x_j of its memory): medium_event already pushed it and
-    // advanced the event counter past it, so the draw is keyed by the event before.
-    const RandomBlock r = random_block(ctx.seed, state.pixel[s], state.sample[s],
-                                       state.event[s] - 1, RngPurpose::kSneeProbe);
-    const Vec3 w =
-        probe_direction_sample(ctx.snee.probe, state.direction_in_j(s), m.g, {r.u[0], r.u[1]});
-    rays.push(state.vertex_j(s), w, 0.0f, kInfinity);
+  const size_t n = q.probe.size();
+  for (size_t k = 0; k < n; k += simd::kLanes) {
+    const size_t count = std::min(simd::kLanes, n - k);
+    const simd::SlotChunk chunk(q.probe.begin() + k, count);
+    const simd::Vec3Batch w = probe_directions(ctx, state, chunk);
+    alignas(64) float wx[simd::kLanes], wy[simd::kLanes], wz[simd::kLanes];
+    w.x.store_aligned(wx);
+    w.y.store_aligned(wy);
+    w.z.store_aligned(wz);
+    for (size_t l = 0; l < count; ++l)
+      rays.push(state.vertex_j(q.probe[k + l]), {wx[l], wy[l], wz[l]}, 0.0f, kInfinity);
+    counters.count_lanes(BatchedKernel::kProbeDirections, count, simd::kLanes);
   }
   ctx.embree->intersect(rays.rays(), rays.hits(), static_cast<unsigned>(rays.size()), false);
   counters.rays[3] += rays.size();

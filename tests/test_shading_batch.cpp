@@ -13,6 +13,8 @@
 #include "kernels/simd/fresnel_batch.h"
 #include "kernels/simd/hg_phase_batch.h"
 #include "kernels/simd/hg_sample_batch.h"
+#include "kernels/simd/sampling_batch.h"
+#include "kernels/sampling.h"
 
 namespace snee {
 namespace {
@@ -102,7 +104,7 @@ TEST(ShadingBatch, FrameMatchesScalarBitwise) {
 }
 
 // The bound of kernels/simd/README.md: the largest component difference seen over these lanes.
-constexpr float kHgDirectionBound = 0x1p-21f;
+constexpr float kDirectionBound = 0x1p-21f;
 
 TEST(ShadingBatch, HenyeyGreensteinSampleMatchesScalar) {
   std::mt19937 engine(11);
@@ -130,9 +132,30 @@ TEST(ShadingBatch, HenyeyGreensteinSampleMatchesScalar) {
                         std::fabs(dz.v[i] - want.z)});
     }
   }
-  EXPECT_LE(worst, kHgDirectionBound) << "largest component difference " << worst;
+  EXPECT_LE(worst, kDirectionBound) << "largest component difference " << worst;
   RecordProperty("largest_component_difference", std::to_string(worst));
   std::printf("largest direction component difference: %g (2^%.2f)\n", worst, std::log2(worst));
+}
+
+TEST(ShadingBatch, UniformSphereSampleMatchesScalar) {
+  std::mt19937 engine(12);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  float worst = 0;
+  for (int trial = 0; trial < 100000; ++trial) {
+    Lanes u0, u1;
+    for (size_t i = 0; i < kLanes; ++i) {
+      u0.v[i] = trial < 2 ? (trial == 0 ? 0.0f : std::nextafter(1.0f, 0.0f)) : unit(engine);
+      u1.v[i] = unit(engine);
+    }
+    const simd::Vec3Batch got = simd::sample_uniform_sphere(u0.batch(), u1.batch());
+    const Lanes dx = to_lanes(got.x), dy = to_lanes(got.y), dz = to_lanes(got.z);
+    for (size_t i = 0; i < kLanes; ++i) {
+      const Vec3 want = sample_uniform_sphere({u0.v[i], u1.v[i]});
+      ASSERT_EQ(std::bit_cast<uint32_t>(dz.v[i]), std::bit_cast<uint32_t>(want.z));
+      worst = std::max({worst, std::fabs(dx.v[i] - want.x), std::fabs(dy.v[i] - want.y)});
+    }
+  }
+  EXPECT_LE(worst, kDirectionBound) << "largest component difference " << worst;
 }
 
 }  // namespace

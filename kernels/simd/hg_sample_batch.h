@@ -8,6 +8,7 @@
 #include "kernels/simd/frame_batch.h"
 #include "kernels/simd/fresnel_batch.h"
 #include "kernels/simd/hg_phase_batch.h"
+#include "kernels/simd/sampling_batch.h"
 
 namespace snee::simd {
 
@@ -24,12 +25,8 @@ inline HgSampleBatch hg_sample(const Vec3Batch& w_before, FloatBatch g, FloatBat
       s + g * (half * (FloatBatch(3.0f) + s * s) + g * (s + half * g * (s * s - one)));
   const FloatBatch den = one + g * s;
   const FloatBatch cos_theta = clamp(num / (den * den), FloatBatch(-1.0f), one);
-  // safe_sqrt's std::max(0, x), NaN included.
-  const FloatBatch sin2 = one - cos_theta * cos_theta;
-  const FloatBatch sin_theta =
-      xsimd::sqrt(xsimd::select(FloatBatch(0.0f) < sin2, sin2, FloatBatch(0.0f)));
-  const auto [sin_phi, cos_phi] = xsimd::sincos(FloatBatch(2.0f * kPi) * u1);
-  const Vec3Batch local{sin_theta * cos_phi, sin_theta * sin_phi, cos_theta};
+  const FloatBatch sin_theta = safe_sqrt(one - cos_theta * cos_theta);
+  const Vec3Batch local = spherical_direction(sin_theta, cos_theta, FloatBatch(2.0f * kPi) * u1);
   return {FrameBatch::from_normal(w_before).to_world(local), hg_phase(cos_theta, g)};
 }
 
