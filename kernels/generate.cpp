@@ -16,6 +16,7 @@ StageQueues::StageQueues(size_t slots)
       subdivide(slots),
       retire(slots),
       flights(slots),
+      surfaces(slots),
       rays(slots),
       shadow(slots * 8) {}
 

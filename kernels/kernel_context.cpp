@@ -23,6 +23,8 @@ const char* batched_kernel_name(BatchedKernel k) {
       return "generate";
     case BatchedKernel::kMediumFlights:
       return "medium_event";
+    case BatchedKernel::kSurfaceSamples:
+      return "shade_surface";
     case BatchedKernel::kProbeDirections:
       return "snee_probe";
     case BatchedKernel::kCount:

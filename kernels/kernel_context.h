@@ -43,9 +43,15 @@ struct MediumInfo {
 };
 
 // The stage kernels that run their queue in SIMD chunks, for lane-occupancy counters.
-enum class BatchedKernel : int { kCameraRays, kMediumFlights, kProbeDirections, kCount };
+enum class BatchedKernel : int {
+  kCameraRays,
+  kMediumFlights,
+  kSurfaceSamples,
+  kProbeDirections,
+  kCount
+};
 inline constexpr int kBatchedKernels = static_cast<int>(BatchedKernel::kCount);
-// The stage's name: "generate", "medium_event", "snee_probe".
+// The stage's name: "generate", "medium_event", "shade_surface", "snee_probe".
 const char* batched_kernel_name(BatchedKernel k);
 
 // Lanes that held a queued slot, and lanes computed (a short chunk still runs at full width).

@@ -1,8 +1,8 @@
 #include <algorithm>
 
 #include "kernels/medium/free_flight.h"
-#include "kernels/medium_lanes.h"
 #include "kernels/medium/henyey_greenstein.h"
+#include "kernels/medium_lanes.h"
 #include "kernels/path_ops.h"
 #include "kernels/simd/free_flight_batch.h"
 #include "kernels/simd/hg_sample_batch.h"

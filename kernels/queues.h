@@ -87,25 +87,52 @@ class ExitPointQueue {
   size_t size_ = 0;
 };
 
-// What the batched part of medium_event computed for each entry of its queue (by queue
-// position, so a chunk is stored with whole vector stores, a short last chunk included): the
-// sampled flight distance, the scattering point it reaches and the phase-sampled direction from
-// there, with its pdf.
-struct FlightResults {
-  explicit FlightResults(size_t capacity) : FlightResults(capacity, (capacity + 15) / 16 * 16) {}
-  AlignedArray<float> t, x, y, z, wx, wy, wz, phase_pdf;
+// Scratch arrays indexed by queue position are rounded up to 16 entries, a whole number of
+// batches at every x86 SIMD width, so a short last chunk is stored with whole vector stores.
+inline size_t padded_capacity(size_t n) {
+  return (n + 15) / 16 * 16;
+}
 
- private:
-  // Rounded up to 16 entries, a whole number of batches at every x86 SIMD width.
-  FlightResults(size_t, size_t padded)
-      : t(padded),
-        x(padded),
-        y(padded),
-        z(padded),
-        wx(padded),
-        wy(padded),
-        wz(padded),
-        phase_pdf(padded) {}
+// What the batched part of medium_event computed for each entry of its queue: the sampled
+// flight distance, the scattering point it reaches and the phase-sampled direction from there,
+// with its pdf.
+struct FlightResults {
+  explicit FlightResults(size_t capacity)
+      : t(padded_capacity(capacity)),
+        x(padded_capacity(capacity)),
+        y(padded_capacity(capacity)),
+        z(padded_capacity(capacity)),
+        wx(padded_capacity(capacity)),
+        wy(padded_capacity(capacity)),
+        wz(padded_capacity(capacity)),
+        phase_pdf(padded_capacity(capacity)) {}
+  AlignedArray<float> t, x, y, z, wx, wy, wz, phase_pdf;
+};
+
+// What shade_surface's batched part computed for each entry of its queue: the hit point and
+// geometric normal, the dielectric's parameters there, and its BSDF sample (the light-side
+// direction in world space, the local cosine, f, pdf and flags kSurfaceSample*).
+inline constexpr uint32_t kSurfaceSampleValid = 1, kSurfaceSampleTransmission = 2,
+                          kSurfaceSampleDelta = 4;
+struct SurfaceResults {
+  explicit SurfaceResults(size_t capacity)
+      : px(padded_capacity(capacity)),
+        py(padded_capacity(capacity)),
+        pz(padded_capacity(capacity)),
+        nx(padded_capacity(capacity)),
+        ny(padded_capacity(capacity)),
+        nz(padded_capacity(capacity)),
+        eta(padded_capacity(capacity)),
+        alpha(padded_capacity(capacity)),
+        wx(padded_capacity(capacity)),
+        wy(padded_capacity(capacity)),
+        wz(padded_capacity(capacity)),
+        cos_local(padded_capacity(capacity)),
+        f(padded_capacity(capacity)),
+        pdf(padded_capacity(capacity)),
+        flags(padded_capacity(capacity)) {}
+  AlignedArray<float> px, py, pz, nx, ny, nz, eta, alpha, wx, wy, wz, cos_local, f, pdf;
+  AlignedArray<uint32_t> flags;
 };
 
 // Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.

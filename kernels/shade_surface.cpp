@@ -1,12 +1,91 @@
+#include <algorithm>
+
 #include "kernels/bsdf/dielectric.h"
 #include "kernels/bsdf/diffuse.h"
 #include "kernels/exit_event.h"
 #include "kernels/path_ops.h"
+#include "kernels/simd/dielectric_batch.h"
+#include "kernels/simd/philox_batch.h"
+#include "kernels/simd/slot_chunk.h"
 #include "kernels/stages.h"
 
 namespace snee {
 
 namespace {
+
+using simd::FloatBatch;
+using simd::UintBatch;
+
+// Hit point, normal and interface of every queued surface hit, by queue position; the padding
+// after the last entry repeats the first, so whole batches read defined values.
+void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQueue& queue,
+                 SurfaceResults& out) {
+  const size_t n = queue.size();
+  for (size_t k = 0; k < n; ++k) {
+    const uint32_t s = queue[k];
+    const Vec3 p = state.origin(s) + state.direction(s) * state.hit_t[s];
+    const uint32_t geom = state.hit_geom[s];
+    const Vec3 normal = ctx.embree->normal(geom, state.hit_prim[s], p);
+    const SurfaceInfo& info = ctx.surfaces[geom];
+    // Only dielectric lanes use the batched sample; others get a valid placeholder interface.
+    const DielectricParams d =
+        info.kind == MaterialKind::kDielectric ? info.dielectric : DielectricParams{};
+    out.px[k] = p.x, out.py[k] = p.y, out.pz[k] = p.z;
+    out.nx[k] = normal.x, out.ny[k] = normal.y, out.nz[k] = normal.z;
+    out.eta[k] = d.eta, out.alpha[k] = d.alpha;
+  }
+  for (size_t k = n; k < (n + simd::kLanes - 1) / simd::kLanes * simd::kLanes; ++k) {
+    for (AlignedArray<float>* field :
+         {&out.px, &out.py, &out.pz, &out.nx, &out.ny, &out.nz, &out.eta, &out.alpha})
+      (*field)[k] = (*field)[0];
+  }
+}
+
+// The dielectric BSDF sample of one chunk of the queue at position k, in the frame of the
+// geometric normal, as the per-slot pass would draw it.
+void sample_dielectrics(const KernelContext& ctx, const PathState& state,
+                        const simd::SlotChunk& chunk, SurfaceResults& out, size_t k) {
+  const auto at = [k](const AlignedArray<float>& a) {
+    return FloatBatch::load_aligned(a.data() + k);
+  };
+  const simd::FrameBatch frame =
+      simd::FrameBatch::from_normal({at(out.nx), at(out.ny), at(out.nz)});
+  const simd::Vec3Batch wo = frame.to_local(
+      {-chunk.load(state.dir_x), -chunk.load(state.dir_y), -chunk.load(state.dir_z)});
+  const simd::RandomBlockBatch r =
+      simd::random_block(ctx.seed, chunk.load(state.pixel), chunk.load(state.sample),
+                         chunk.load(state.event), RngPurpose::kBsdf);
+  const simd::BsdfSampleBatch bs =
+      simd::dielectric_sample({at(out.eta), at(out.alpha)}, wo, r.u[0], r.u[1], r.u[2]);
+  const simd::Vec3Batch wi = frame.to_world(bs.wi);
+  wi.x.store_aligned(out.wx.data() + k);
+  wi.y.store_aligned(out.wy.data() + k);
+  wi.z.store_aligned(out.wz.data() + k);
+  xsimd::abs(bs.wi.z).store_aligned(out.cos_local.data() + k);
+  bs.f.store_aligned(out.f.data() + k);
+  bs.pdf.store_aligned(out.pdf.data() + k);
+  alignas(64) bool valid[simd::kLanes], transmission[simd::kLanes], delta[simd::kLanes];
+  bs.valid.store_aligned(valid);
+  bs.transmission.store_aligned(transmission);
+  bs.delta.store_aligned(delta);
+  for (size_t l = 0; l < simd::kLanes; ++l) {
+    out.flags[k + l] = (valid[l] ? kSurfaceSampleValid : 0u) |
+                       (transmission[l] ? kSurfaceSampleTransmission : 0u) |
+                       (delta[l] ? kSurfaceSampleDelta : 0u);
+  }
+}
+
+// The batched sample of queue position k as the scalar BsdfSample (local z only as |cos|).
+BsdfSample batched_sample(const SurfaceResults& r, size_t k) {
+  BsdfSample bs;
+  bs.wi = {0.0f, 0.0f, r.cos_local[k]};
+  bs.f = r.f[k];
+  bs.pdf = r.pdf[k];
+  bs.valid = (r.flags[k] & kSurfaceSampleValid) != 0;
+  bs.transmission = (r.flags[k] & kSurfaceSampleTransmission) != 0;
+  bs.delta = (r.flags[k] & kSurfaceSampleDelta) != 0;
+  return bs;
+}
 
 // Medium on the side of the surface that direction w points into.
 int32_t medium_on_side(const SurfaceInfo& info, Vec3 w, Vec3 n) {
@@ -56,13 +135,25 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
 
 }  // namespace
 
+// Two passes: hit geometry and dielectric BSDF samples for the whole queue (the samples in
+// SIMD chunks), then, per slot in queue order, what branches: emission, null crossings, exit
+// events, light sampling, diffuse sampling, roulette and routing.
 void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
                    KernelCounters& counters) {
-  for (const uint32_t s : q.surface) {
+  SurfaceResults& hits = q.surfaces;
+  const size_t n_hits = q.surface.size();
+  gather_hits(ctx, state, q.surface, hits);
+  for (size_t k = 0; k < n_hits; k += simd::kLanes) {
+    const size_t count = std::min(simd::kLanes, n_hits - k);
+    sample_dielectrics(ctx, state, simd::SlotChunk(q.surface.begin() + k, count), hits, k);
+    counters.count_lanes(BatchedKernel::kSurfaceSamples, count, simd::kLanes);
+  }
+  for (size_t k = 0; k < n_hits; ++k) {
+    const uint32_t s = q.surface[k];
     const Vec3 d = state.direction(s);
-    const Vec3 p = state.origin(s) + d * state.hit_t[s];
+    const Vec3 p{hits.px[k], hits.py[k], hits.pz[k]};
     const uint32_t geom = state.hit_geom[s];
-    const Vec3 n = ctx.embree->normal(geom, state.hit_prim[s], p);
+    const Vec3 n{hits.nx[k], hits.ny[k], hits.nz[k]};
     const SurfaceInfo& info = ctx.surfaces[geom];
     const bool light_skipped = (state.flags[s] & kPathLightSkipped) != 0;
     const bool after_exit = (state.flags[s] & kPathAfterSneeExit) != 0;
@@ -114,21 +205,22 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
                   exit.snee_possible ? &exit : nullptr);
     }
 
-    const RandomBlock r = draw(ctx, state, s, RngPurpose::kBsdf);
     BsdfSample bs;
+    Vec3 wi;
     Rgb reflectance(1.0f);
     if (info.kind == MaterialKind::kDiffuse) {
+      const RandomBlock r = draw(ctx, state, s, RngPurpose::kBsdf);
       bs = diffuse_sample(wo_local, {r.u[0], r.u[1]});
       reflectance = info.albedo;
+      wi = frame.to_world(bs.wi);
     } else {
-      DielectricParams params = info.dielectric;
-      bs = dielectric_sample(params, wo_local, {r.u[0], r.u[1]}, r.u[2]);
+      bs = batched_sample(hits, k);
+      wi = {hits.wx[k], hits.wy[k], hits.wz[k]};
     }
     if (!bs.valid || bs.pdf <= 0 || bs.f <= 0) {
       q.retire.push(s);
       continue;
     }
-    const Vec3 wi = frame.to_world(bs.wi);
     state.set_throughput(s,
                          state.throughput(s) * reflectance * (bs.f * std::fabs(bs.wi.z) / bs.pdf));
     state.mis_pdf[s] = bs.delta ? 0.0f : bs.pdf;

@@ -20,6 +20,7 @@ struct StageQueues {
   ExitPointQueue subdivide;  // SNEE: probes that found the medium's exit, waiting for x_j
   SlotQueue retire;          // finished paths
   FlightResults flights;     // scratch of medium_event's batched part
+  SurfaceResults surfaces;   // scratch of shade_surface's batched part
   RayBatch rays;             // scratch for batched Embree queries
   ShadowQueue shadow;
 };

@@ -21,6 +21,7 @@ struct FrameBatch {
     return {
         {one + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
   }
+  Vec3Batch to_local(const Vec3Batch& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
   Vec3Batch to_world(const Vec3Batch& v) const {
     return {s.x * v.x + t.x * v.y + n.x * v.z, s.y * v.x + t.y * v.y + n.y * v.z,
             s.z * v.x + t.z * v.y + n.z * v.z};
