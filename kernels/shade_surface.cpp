@@ -55,8 +55,8 @@ void sample_dielectrics(const KernelContext& ctx, const PathState& state,
   const simd::RandomBlockBatch r =
       simd::random_block(ctx.seed, chunk.load(state.pixel), chunk.load(state.sample),
                          chunk.load(state.event), RngPurpose::kBsdf);
-  const simd::BsdfSampleBatch bs =
-      simd::dielectric_sample({at(out.eta), at(out.alpha)}, wo, r.u[0], r.u[1], r.u[2]);
+  const simd::BsdfSampleBatch bs = simd::dielectric_sample({at(out.eta), at(out.alpha)}, wo, r.u[0],
+                                                           r.u[1], r.u[2], chunk.count());
   const simd::Vec3Batch wi = frame.to_world(bs.wi);
   wi.x.store_aligned(out.wx.data() + k);
   wi.y.store_aligned(out.wy.data() + k);

@@ -2,7 +2,8 @@
 // bit for bit equal to the scalar function on every valid sample: the same operations in the
 // same order, both lobes and both the smooth and rough paths computed and then selected. The
 // one transcendental, the azimuth of the GGX normal, is evaluated per lane with libm's cos and
-// sin, as the scalar sampler does. Invalid lanes report valid = false and nothing else.
+// sin, as the scalar sampler does, for the chunk's active lanes only (the others are padding and
+// get an arbitrary normal). Invalid lanes report valid = false and nothing else.
 #pragma once
 
 #include <cmath>
@@ -61,14 +62,15 @@ inline FloatBatch ggx_g1(const Vec3Batch& v, const Vec3Batch& m, FloatBatch alph
                        FloatBatch(0.0f), g1);
 }
 
-inline Vec3Batch ggx_sample_normal(FloatBatch u0, FloatBatch u1, FloatBatch alpha) {
+inline Vec3Batch ggx_sample_normal(FloatBatch u0, FloatBatch u1, FloatBatch alpha,
+                                   size_t active_lanes) {
   const FloatBatch a2u = alpha * alpha * u0;
   const FloatBatch denom = (FloatBatch(1.0f) - u0) + a2u;
   const FloatBatch cos_theta = xsimd::sqrt((FloatBatch(1.0f) - u0) / denom);
   const FloatBatch sin_theta = xsimd::sqrt(a2u / denom);
-  alignas(64) float phi[kLanes], cos_phi[kLanes], sin_phi[kLanes];
+  alignas(64) float phi[kLanes], cos_phi[kLanes] = {}, sin_phi[kLanes] = {};
   (FloatBatch(2.0f * kPi) * u1).store_aligned(phi);
-  for (size_t l = 0; l < kLanes; ++l) {
+  for (size_t l = 0; l < active_lanes; ++l) {
     cos_phi[l] = std::cos(phi[l]);
     sin_phi[l] = std::sin(phi[l]);
   }
@@ -153,9 +155,9 @@ inline BsdfSampleBatch smooth_sample(const DielectricLanes& p, const Vec3Batch& 
 }
 
 inline BsdfSampleBatch rough_sample(const DielectricLanes& p, const Vec3Batch& wo, FloatBatch u0,
-                                    FloatBatch u1, FloatBatch u_lobe) {
+                                    FloatBatch u1, FloatBatch u_lobe, size_t active_lanes) {
   const FloatBatch zero(0.0f);
-  const Vec3Batch m = ggx_sample_normal(u0, u1, p.alpha);
+  const Vec3Batch m = ggx_sample_normal(u0, u1, p.alpha, active_lanes);
   const Vec3Batch m_side = select(wo.z > zero, m, negate(m));
   const FloatBatch c = dot(wo, m_side);
   const FloatBatch eta_o = side_index(wo.z, p.eta), eta_t = other_side_index(wo.z, p.eta);
@@ -180,12 +182,14 @@ inline BsdfSampleBatch rough_sample(const DielectricLanes& p, const Vec3Batch& w
 
 }  // namespace dielectric_detail
 
+// Lanes [0, active_lanes) hold real samples.
 inline BsdfSampleBatch dielectric_sample(const DielectricLanes& p, const Vec3Batch& wo,
-                                         FloatBatch u0, FloatBatch u1, FloatBatch u_lobe) {
+                                         FloatBatch u0, FloatBatch u1, FloatBatch u_lobe,
+                                         size_t active_lanes = kLanes) {
   using namespace dielectric_detail;
   const BoolBatch delta = p.delta();
   const BsdfSampleBatch smooth = smooth_sample(p, wo, u_lobe);
-  const BsdfSampleBatch rough = rough_sample(p, wo, u0, u1, u_lobe);
+  const BsdfSampleBatch rough = rough_sample(p, wo, u0, u1, u_lobe, active_lanes);
   BsdfSampleBatch s;
   s.wi = select(delta, smooth.wi, rough.wi);
   s.f = xsimd::select(delta, smooth.f, rough.f);
