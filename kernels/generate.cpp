@@ -17,6 +17,7 @@ StageQueues::StageQueues(size_t slots)
       retire(slots),
       flights(slots),
       surfaces(slots),
+      snee_randoms(slots),
       rays(slots),
       shadow(slots * 8) {}
 

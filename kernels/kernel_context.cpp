@@ -27,6 +27,8 @@ const char* batched_kernel_name(BatchedKernel k) {
       return "shade_surface";
     case BatchedKernel::kProbeDirections:
       return "snee_probe";
+    case BatchedKernel::kSubdivisionDraws:
+      return "subdivision";
     case BatchedKernel::kCount:
       break;
   }

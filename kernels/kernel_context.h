@@ -48,10 +48,11 @@ enum class BatchedKernel : int {
   kMediumFlights,
   kSurfaceSamples,
   kProbeDirections,
+  kSubdivisionDraws,
   kCount
 };
 inline constexpr int kBatchedKernels = static_cast<int>(BatchedKernel::kCount);
-// The stage's name: "generate", "medium_event", "shade_surface", "snee_probe".
+// The stage's name: "generate", "medium_event", "shade_surface", "snee_probe", "subdivision".
 const char* batched_kernel_name(BatchedKernel k);
 
 // Lanes that held a queued slot, and lanes computed (a short chunk still runs at full width).

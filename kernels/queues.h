@@ -3,6 +3,7 @@
 // order never depends on timing.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -77,6 +78,7 @@ class ExitPointQueue {
     nz_[i] = n_k.z;
   }
   uint32_t slot(size_t i) const { return slot_[i]; }
+  const uint32_t* slots() const { return slot_.data(); }
   uint32_t geom(size_t i) const { return geom_[i]; }
   Vec3 x_k(size_t i) const { return {x_[i], y_[i], z_[i]}; }
   Vec3 n_k(size_t i) const { return {nx_[i], ny_[i], nz_[i]}; }
@@ -133,6 +135,17 @@ struct SurfaceResults {
         flags(padded_capacity(capacity)) {}
   AlignedArray<float> px, py, pz, nx, ny, nz, eta, alpha, wx, wy, wz, cos_local, f, pdf;
   AlignedArray<uint32_t> flags;
+};
+
+// The random numbers subdivision draws for each exit of its queue, by queue position: for each
+// of the two strategies two Philox blocks of four numbers (drawn in SIMD chunks, used per exit).
+struct SubdivisionRandoms {
+  static constexpr int kBlocks = 4;  // top-to-bottom: 2, bottom-to-top: 2
+  explicit SubdivisionRandoms(size_t capacity) {
+    for (AlignedArray<float>& a : u) a = AlignedArray<float>(padded_capacity(capacity));
+  }
+  // u[4 b + j]: number j of block b at each queue position.
+  std::array<AlignedArray<float>, 4 * kBlocks> u;
 };
 
 // Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.

@@ -12,16 +12,17 @@ namespace snee {
 // The queues one work unit cycles through.
 struct StageQueues {
   explicit StageQueues(size_t slots);
-  SlotQueue extend;          // rays to trace
-  SlotQueue medium;          // traced rays travelling inside a medium
-  SlotQueue surface;         // rays that reached a surface
-  SlotQueue escaped;         // rays that left the scene
-  SlotQueue probe;           // SNEE: medium vertices waiting for an exit-point probe
-  ExitPointQueue subdivide;  // SNEE: probes that found the medium's exit, waiting for x_j
-  SlotQueue retire;          // finished paths
-  FlightResults flights;     // scratch of medium_event's batched part
-  SurfaceResults surfaces;   // scratch of shade_surface's batched part
-  RayBatch rays;             // scratch for batched Embree queries
+  SlotQueue extend;                 // rays to trace
+  SlotQueue medium;                 // traced rays travelling inside a medium
+  SlotQueue surface;                // rays that reached a surface
+  SlotQueue escaped;                // rays that left the scene
+  SlotQueue probe;                  // SNEE: medium vertices waiting for an exit-point probe
+  ExitPointQueue subdivide;         // SNEE: probes that found the medium's exit, waiting for x_j
+  SlotQueue retire;                 // finished paths
+  FlightResults flights;            // scratch of medium_event's batched part
+  SurfaceResults surfaces;          // scratch of shade_surface's batched part
+  SubdivisionRandoms snee_randoms;  // scratch of subdivision's batched draws
+  RayBatch rays;                    // scratch for batched Embree queries
   ShadowQueue shadow;
 };
 

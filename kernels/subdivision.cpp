@@ -1,4 +1,8 @@
+#include <algorithm>
+
 #include "kernels/path_ops.h"
+#include "kernels/simd/philox_batch.h"
+#include "kernels/simd/slot_chunk.h"
 #include "kernels/snee/snee_strategies.h"
 #include "kernels/stages.h"
 
@@ -6,10 +10,23 @@ namespace snee {
 
 namespace {
 
-RandomBlock draw_at_vertex(const KernelContext& ctx, const PathState& state, uint32_t s,
-                           RngPurpose purpose) {
+constexpr RngPurpose kBlockPurposes[SubdivisionRandoms::kBlocks] = {
+    RngPurpose::kSneeTopToBottom, RngPurpose::kSneeTopToBottomDistance,
+    RngPurpose::kSneeBottomToTop, RngPurpose::kSneeBottomToTopBtdf};
+
+// The Philox blocks of the exits at queue positions [k, k + count): the four blocks of a chunk
+// are independent, so their rounds overlap in the pipeline instead of running one exit's
+// dependency chain at a time. Bit for bit the scalar random_block.
+void draw_chunk(const KernelContext& ctx, const PathState& state, const simd::SlotChunk& chunk,
+                bool bottom_to_top, SubdivisionRandoms& out, size_t k) {
   // Keyed by the event of the medium vertex x_i, as the probe was (snee_probe.cpp).
-  return random_block(ctx.seed, state.pixel[s], state.sample[s], state.event[s] - 1, purpose);
+  const simd::UintBatch pixel = chunk.load(state.pixel), sample = chunk.load(state.sample);
+  const simd::UintBatch event = chunk.load(state.event) - simd::UintBatch(1u);
+  for (int b = 0; b < (bottom_to_top ? 4 : 2); ++b) {
+    const simd::RandomBlockBatch r =
+        simd::random_block(ctx.seed, pixel, sample, event, kBlockPurposes[b]);
+    for (int j = 0; j < 4; ++j) r.u[j].store_aligned(out.u[4 * b + j].data() + k);
+  }
 }
 
 void count_failure(SneeFailure why, Strategy st, KernelCounters& counters) {
@@ -55,6 +72,17 @@ void queue_candidate(const SneeCandidate& c, Strategy st, uint32_t slot, Rgb thr
 void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
                  KernelCounters& counters) {
   const ExitPointQueue& exits = q.subdivide;
+  const bool top_to_bottom = ctx.snee.enabled.contains(Strategy::kTopToBottom);
+  // Bottom-to-top finds only lights seen by escaped rays; without any it cannot succeed.
+  const bool bottom_to_top =
+      ctx.snee.enabled.contains(Strategy::kBottomToTop) && ctx.lights->has_escaped_lights();
+  SubdivisionRandoms& randoms = q.snee_randoms;
+  for (size_t k = 0; k < exits.size(); k += simd::kLanes) {
+    const size_t count = std::min(simd::kLanes, exits.size() - k);
+    draw_chunk(ctx, state, simd::SlotChunk(exits.slots() + k, count), bottom_to_top, randoms, k);
+    counters.count_lanes(BatchedKernel::kSubdivisionDraws, count, simd::kLanes);
+  }
+  const auto u = [&](int n, size_t i) { return randoms.u[n][i]; };
   for (size_t i = 0; i < exits.size(); ++i) {
     const uint32_t s = exits.slot(i);
     const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
@@ -63,23 +91,18 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
     const ExitPoint exit{exits.x_k(i), exits.n_k(i), ctx.surfaces[exits.geom(i)].dielectric};
     const Rgb beta = state.throughput(s);
 
-    if (ctx.snee.enabled.contains(Strategy::kTopToBottom)) {
-      const RandomBlock a = draw_at_vertex(ctx, state, s, RngPurpose::kSneeTopToBottom);
-      const RandomBlock b = draw_at_vertex(ctx, state, s, RngPurpose::kSneeTopToBottomDistance);
-      const std::array<float, kTopToBottomDimensions> u = {a.u[0], a.u[1], a.u[2], a.u[3],
-                                                           b.u[0], b.u[1], b.u[2], b.u[3]};
+    if (top_to_bottom) {
+      const std::array<float, kTopToBottomDimensions> tb = {u(0, i), u(1, i), u(2, i), u(3, i),
+                                                            u(4, i), u(5, i), u(6, i), u(7, i)};
       const SneeCandidate c =
-          sample_top_to_bottom(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, u);
+          sample_top_to_bottom(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, tb);
       queue_candidate(c, Strategy::kTopToBottom, s, beta, q.shadow, counters);
     }
-    // Bottom-to-top finds only lights seen by escaped rays; without any it cannot succeed.
-    if (ctx.snee.enabled.contains(Strategy::kBottomToTop) && ctx.lights->has_escaped_lights()) {
-      const RandomBlock a = draw_at_vertex(ctx, state, s, RngPurpose::kSneeBottomToTop);
-      const RandomBlock b = draw_at_vertex(ctx, state, s, RngPurpose::kSneeBottomToTopBtdf);
-      const std::array<float, kBottomToTopDimensions> u = {a.u[0], a.u[1], a.u[2],
-                                                           a.u[3], b.u[0], b.u[1]};
+    if (bottom_to_top) {
+      const std::array<float, kBottomToTopDimensions> bt = {u(8, i),  u(9, i),  u(10, i),
+                                                            u(11, i), u(12, i), u(13, i)};
       const SneeCandidate c =
-          sample_bottom_to_top(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, u);
+          sample_bottom_to_top(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, bt);
       queue_candidate(c, Strategy::kBottomToTop, s, beta, q.shadow, counters);
     }
   }
