@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <new>
 
@@ -79,6 +80,11 @@ struct PathState {
 
   size_t capacity() const {
     return capacity_;
+  }
+  // Every field of every slot from a workspace of the same capacity (benchmarks rerun a stage
+  // from one starting state).
+  void copy_from(const PathState& other) {
+    std::memcpy(storage_.get(), other.storage_.get(), capacity_ * bytes_per_slot());
   }
 
   Rgb throughput(uint32_t s) const {

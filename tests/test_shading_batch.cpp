@@ -178,8 +178,10 @@ TEST(ShadingBatch, DielectricSampleMatchesScalarBitwise) {
       if (trial % 13 == 0) w = normalize(Vec3(w.x, w.y, 1e-4f * w.z));  // grazing
       if (trial == 5) w = Vec3(1.0f, 0.0f, 0.0f);                       // wo.z == 0
       wx.v[i] = w.x, wy.v[i] = w.y, wz.v[i] = w.z;
-      eta.v[i] = etas[(trial + i) % 4];
-      alpha.v[i] = alphas[(trial / 4 + i) % 5];
+      // Mixed chunks, and chunks of one interface (which skip the other path).
+      const bool uniform = trial % 3 == 0;
+      eta.v[i] = uniform ? etas[(trial / 3) % 4] : etas[(trial + i) % 4];
+      alpha.v[i] = uniform ? alphas[(trial / 12) % 5] : alphas[(trial / 4 + i) % 5];
       u0.v[i] = unit(engine), u1.v[i] = unit(engine), ul.v[i] = unit(engine);
     }
     const simd::BsdfSampleBatch got =

@@ -1,9 +1,10 @@
 // dielectric_sample (bsdf/dielectric.cpp) for a batch of lanes, each with its own interface,
 // bit for bit equal to the scalar function on every valid sample: the same operations in the
-// same order, both lobes and both the smooth and rough paths computed and then selected. The
-// one transcendental, the azimuth of the GGX normal, is evaluated per lane with libm's cos and
-// sin, as the scalar sampler does, for the chunk's active lanes only (the others are padding and
-// get an arbitrary normal). Invalid lanes report valid = false and nothing else.
+// same order, both lobes (and, in a mixed chunk, both the smooth and rough paths) computed and
+// then selected. The one transcendental, the azimuth of the GGX normal, is evaluated per lane
+// with libm's cos and sin, as the scalar sampler does, for the chunk's active lanes only (the
+// others are padding and get an arbitrary normal). Invalid lanes report valid = false and
+// nothing else.
 #pragma once
 
 #include <cmath>
@@ -182,21 +183,30 @@ inline BsdfSampleBatch rough_sample(const DielectricLanes& p, const Vec3Batch& w
 
 }  // namespace dielectric_detail
 
-// Lanes [0, active_lanes) hold real samples.
+// Lanes [0, active_lanes) hold real samples. A chunk of only smooth or only rough interfaces
+// (the usual case: one material) computes only that path.
 inline BsdfSampleBatch dielectric_sample(const DielectricLanes& p, const Vec3Batch& wo,
                                          FloatBatch u0, FloatBatch u1, FloatBatch u_lobe,
                                          size_t active_lanes = kLanes) {
   using namespace dielectric_detail;
   const BoolBatch delta = p.delta();
-  const BsdfSampleBatch smooth = smooth_sample(p, wo, u_lobe);
-  const BsdfSampleBatch rough = rough_sample(p, wo, u0, u1, u_lobe, active_lanes);
-  BsdfSampleBatch s;
-  s.wi = select(delta, smooth.wi, rough.wi);
-  s.f = xsimd::select(delta, smooth.f, rough.f);
-  s.pdf = xsimd::select(delta, smooth.pdf, rough.pdf);
-  s.transmission = select(delta, smooth.transmission, rough.transmission);
-  s.delta = delta;
-  s.valid = !(wo.z == FloatBatch(0.0f)) && select(delta, smooth.valid, rough.valid);
+  const BoolBatch facing = !(wo.z == FloatBatch(0.0f));
+  if (xsimd::all(delta)) {
+    BsdfSampleBatch s = smooth_sample(p, wo, u_lobe);
+    s.valid = facing && s.valid;
+    return s;
+  }
+  BsdfSampleBatch s = rough_sample(p, wo, u0, u1, u_lobe, active_lanes);
+  if (xsimd::any(delta)) {
+    const BsdfSampleBatch smooth = smooth_sample(p, wo, u_lobe);
+    s.wi = select(delta, smooth.wi, s.wi);
+    s.f = xsimd::select(delta, smooth.f, s.f);
+    s.pdf = xsimd::select(delta, smooth.pdf, s.pdf);
+    s.transmission = select(delta, smooth.transmission, s.transmission);
+    s.valid = select(delta, smooth.valid, s.valid);
+    s.delta = delta;
+  }
+  s.valid = facing && s.valid;
   return s;
 }
 
