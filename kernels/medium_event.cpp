@@ -31,7 +31,8 @@ Vec3Batch select(FloatBatch::batch_bool_type m, const Vec3Batch& a, const Vec3Ba
 // The straight-line part of a medium event, for one chunk of the queue at position k: free
 // flight with path-level spectral MIS, the throughput and channel probabilities it leaves
 // (at the scattering point, or at the boundary it reached), and the phase-sampled direction
-// from the scattering point. Every lane is computed; the per-slot pass decides what is used.
+// from the scattering point, and the roulette number. Every lane is computed; the per-slot pass
+// decides what is used.
 void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chunk,
          FlightResults& out, size_t k) {
   const MediumLanes m = load_media(ctx, state, chunk);
@@ -41,6 +42,9 @@ void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chun
       simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kFreeFlight);
   const simd::RandomBlockBatch rp =
       simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kPhase);
+  simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette)
+      .u[0]
+      .store_aligned(out.u_roulette.data() + k);
 
   const Vec3Batch p{chunk.load(state.channel_p_r), chunk.load(state.channel_p_g),
                     chunk.load(state.channel_p_b)};
@@ -139,7 +143,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     if (straight_nee) medium_nee(ctx, state, s, x, w_before, m, q.shadow);
     // The phase weight f/pdf is exactly 1 for HG; the pdf is kept for MIS at the next light hit.
     state.mis_pdf[s] = straight_nee ? flights.phase_pdf[k] : 0.0f;
-    if (!survive_russian_roulette(ctx, state, s)) {
+    if (!survive_russian_roulette(state, s, flights.u_roulette[k])) {
       q.retire.push(s);
       continue;
     }

@@ -22,14 +22,15 @@ inline Vec3 offset_origin(Vec3 p, Vec3 n, Vec3 w, float epsilon) {
   return dot(w, n) >= 0 ? p + n * epsilon : p - n * epsilon;
 }
 
-// Russian roulette on the radiance-scale-free throughput, from the fourth scattering event on.
-// Returns false if the path is terminated; otherwise rescales the throughput.
-inline bool survive_russian_roulette(const KernelContext& ctx, PathState& state, uint32_t slot) {
+// Russian roulette on the radiance-scale-free throughput, from the fourth scattering event on,
+// with u the first number of the event's kRussianRoulette block (drawn by the stage's batched
+// pass whether or not the roulette runs). Returns false if the path is terminated; otherwise
+// rescales the throughput.
+inline bool survive_russian_roulette(PathState& state, uint32_t slot, float u) {
   if (state.depth[slot] < 4) return true;
   const Rgb beta = state.throughput(slot);
   const float q = std::min(0.95f, max_component(beta) * state.eta_scale[slot]);
   if (q >= 0.95f) return true;
-  const float u = draw(ctx, state, slot, RngPurpose::kRussianRoulette).u[0];
   if (!(u < q)) return false;
   state.set_throughput(slot, beta / q);
   return true;

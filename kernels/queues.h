@@ -97,7 +97,7 @@ inline size_t padded_capacity(size_t n) {
 
 // What the batched part of medium_event computed for each entry of its queue: the sampled
 // flight distance, the scattering point it reaches and the phase-sampled direction from there,
-// with its pdf.
+// with its pdf, and the event's roulette number.
 struct FlightResults {
   explicit FlightResults(size_t capacity)
       : t(padded_capacity(capacity)),
@@ -107,13 +107,15 @@ struct FlightResults {
         wx(padded_capacity(capacity)),
         wy(padded_capacity(capacity)),
         wz(padded_capacity(capacity)),
-        phase_pdf(padded_capacity(capacity)) {}
-  AlignedArray<float> t, x, y, z, wx, wy, wz, phase_pdf;
+        phase_pdf(padded_capacity(capacity)),
+        u_roulette(padded_capacity(capacity)) {}
+  AlignedArray<float> t, x, y, z, wx, wy, wz, phase_pdf, u_roulette;
 };
 
 // What shade_surface's batched part computed for each entry of its queue: the hit point and
-// geometric normal, the dielectric's parameters there, and its BSDF sample (the light-side
-// direction in world space, the local cosine, f, pdf and flags kSurfaceSample*).
+// geometric normal, the dielectric's parameters there, its BSDF sample (the light-side
+// direction in world space, the local cosine, f, pdf and flags kSurfaceSample*), and the
+// event's light-sample and roulette numbers.
 inline constexpr uint32_t kSurfaceSampleValid = 1, kSurfaceSampleTransmission = 2,
                           kSurfaceSampleDelta = 4;
 struct SurfaceResults {
@@ -132,8 +134,13 @@ struct SurfaceResults {
         cos_local(padded_capacity(capacity)),
         f(padded_capacity(capacity)),
         pdf(padded_capacity(capacity)),
+        u_light0(padded_capacity(capacity)),
+        u_light1(padded_capacity(capacity)),
+        u_light2(padded_capacity(capacity)),
+        u_roulette(padded_capacity(capacity)),
         flags(padded_capacity(capacity)) {}
   AlignedArray<float> px, py, pz, nx, ny, nz, eta, alpha, wx, wy, wz, cos_local, f, pdf;
+  AlignedArray<float> u_light0, u_light1, u_light2, u_roulette;
   AlignedArray<uint32_t> flags;
 };
 

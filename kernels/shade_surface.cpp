@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 
 #include "kernels/bsdf/dielectric.h"
 #include "kernels/bsdf/diffuse.h"
@@ -42,9 +43,10 @@ void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQue
 }
 
 // The dielectric BSDF sample of one chunk of the queue at position k, in the frame of the
-// geometric normal, as the per-slot pass would draw it.
-void sample_dielectrics(const KernelContext& ctx, const PathState& state,
-                        const simd::SlotChunk& chunk, SurfaceResults& out, size_t k) {
+// geometric normal, as the per-slot pass would draw it, and the chunk's light-sample and
+// roulette numbers.
+void sample_chunk(const KernelContext& ctx, const PathState& state, const simd::SlotChunk& chunk,
+                  SurfaceResults& out, size_t k) {
   const auto at = [k](const AlignedArray<float>& a) {
     return FloatBatch::load_aligned(a.data() + k);
   };
@@ -52,9 +54,18 @@ void sample_dielectrics(const KernelContext& ctx, const PathState& state,
       simd::FrameBatch::from_normal({at(out.nx), at(out.ny), at(out.nz)});
   const simd::Vec3Batch wo = frame.to_local(
       {-chunk.load(state.dir_x), -chunk.load(state.dir_y), -chunk.load(state.dir_z)});
+  const UintBatch pixel = chunk.load(state.pixel), sample = chunk.load(state.sample);
+  const UintBatch event = chunk.load(state.event);
   const simd::RandomBlockBatch r =
-      simd::random_block(ctx.seed, chunk.load(state.pixel), chunk.load(state.sample),
-                         chunk.load(state.event), RngPurpose::kBsdf);
+      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kBsdf);
+  const simd::RandomBlockBatch light =
+      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kLightSample);
+  light.u[0].store_aligned(out.u_light0.data() + k);
+  light.u[1].store_aligned(out.u_light1.data() + k);
+  light.u[2].store_aligned(out.u_light2.data() + k);
+  simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette)
+      .u[0]
+      .store_aligned(out.u_roulette.data() + k);
   const simd::BsdfSampleBatch bs = simd::dielectric_sample({at(out.eta), at(out.alpha)}, wo, r.u[0],
                                                            r.u[1], r.u[2], chunk.count());
   const simd::Vec3Batch wi = frame.to_world(bs.wi);
@@ -96,12 +107,12 @@ bool needs_tracking(const KernelContext& ctx, int32_t medium) {
   return medium >= 0 || ctx.has_null_surfaces;
 }
 
-// Light sample at a non-delta surface vertex, weighted against BSDF sampling.
+// Light sample at a non-delta surface vertex, weighted against BSDF sampling; u are the first
+// three numbers of the event's kLightSample block.
 void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p, Vec3 n,
                  const Frame& frame, Vec3 wo_local, const SurfaceInfo& info, ShadowQueue& shadow,
-                 const ExitEvent* exit) {
-  const RandomBlock r = draw(ctx, state, s, RngPurpose::kLightSample);
-  const LightSample ls = ctx.lights->sample(p, r.u[0], {r.u[1], r.u[2]});
+                 const ExitEvent* exit, const std::array<float, 3>& u) {
+  const LightSample ls = ctx.lights->sample(p, u[0], {u[1], u[2]});
   if (!ls.valid || ls.pdf <= 0) return;
   const Vec3 wi_local = frame.to_local(ls.wi);
   float f = 0, bsdf_pdf = 0;
@@ -135,7 +146,7 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
 
 }  // namespace
 
-// Two passes: hit geometry and dielectric BSDF samples for the whole queue (the samples in
+// Two passes: hit geometry, dielectric BSDF samples and random numbers for the whole queue (in
 // SIMD chunks), then, per slot in queue order, what branches: emission, null crossings, exit
 // events, light sampling, diffuse sampling, roulette and routing.
 void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
@@ -145,7 +156,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
   gather_hits(ctx, state, q.surface, hits);
   for (size_t k = 0; k < n_hits; k += simd::kLanes) {
     const size_t count = std::min(simd::kLanes, n_hits - k);
-    sample_dielectrics(ctx, state, simd::SlotChunk(q.surface.begin() + k, count), hits, k);
+    sample_chunk(ctx, state, simd::SlotChunk(q.surface.begin() + k, count), hits, k);
     counters.count_lanes(BatchedKernel::kSurfaceSamples, count, simd::kLanes);
   }
   for (size_t k = 0; k < n_hits; ++k) {
@@ -202,7 +213,8 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     const bool delta_bsdf = info.kind == MaterialKind::kDielectric && info.dielectric.delta();
     if (!delta_bsdf && !ctx.lights->empty() && !exit.light_handled_elsewhere) {
       surface_nee(ctx, state, s, p, n, frame, wo_local, info, q.shadow,
-                  exit.snee_possible ? &exit : nullptr);
+                  exit.snee_possible ? &exit : nullptr,
+                  {hits.u_light0[k], hits.u_light1[k], hits.u_light2[k]});
     }
 
     BsdfSample bs;
@@ -235,7 +247,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
         state.flags[s] |= kPathLightSkipped;
       }
     }
-    if (!survive_russian_roulette(ctx, state, s)) {
+    if (!survive_russian_roulette(state, s, hits.u_roulette[k])) {
       q.retire.push(s);
       continue;
     }
