@@ -22,15 +22,17 @@ using simd::UintBatch;
 void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQueue& queue,
                  SurfaceResults& out) {
   const size_t n = queue.size();
+  // Lanes that are not dielectric never use the batched sample; they take the interface seen
+  // last, so a chunk of one dielectric and a diffuse floor still runs one sampling path.
+  DielectricParams placeholder;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t s = queue[k];
     const Vec3 p = state.origin(s) + state.direction(s) * state.hit_t[s];
     const uint32_t geom = state.hit_geom[s];
     const Vec3 normal = ctx.embree->normal(geom, state.hit_prim[s], p);
     const SurfaceInfo& info = ctx.surfaces[geom];
-    // Only dielectric lanes use the batched sample; others get a valid placeholder interface.
-    const DielectricParams d =
-        info.kind == MaterialKind::kDielectric ? info.dielectric : DielectricParams{};
+    if (info.kind == MaterialKind::kDielectric) placeholder = info.dielectric;
+    const DielectricParams& d = placeholder;
     out.px[k] = p.x, out.py[k] = p.y, out.pz[k] = p.z;
     out.nx[k] = normal.x, out.ny[k] = normal.y, out.nz[k] = normal.z;
     out.eta[k] = d.eta, out.alpha[k] = d.alpha;
