@@ -42,9 +42,13 @@ void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chun
       simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kFreeFlight);
   const simd::RandomBlockBatch rp =
       simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kPhase);
-  simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette)
-      .u[0]
-      .store_aligned(out.u_roulette.data() + k);
+  // Roulette starts at the fourth vertex, which this event makes for depth 3 and up; a chunk
+  // without such a path (and the one-slot megakernel's early events) draws nothing for it.
+  if (xsimd::any(chunk.load(state.depth) >= UintBatch(3u))) {
+    simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette)
+        .u[0]
+        .store_aligned(out.u_roulette.data() + k);
+  }
 
   const Vec3Batch p{chunk.load(state.channel_p_r), chunk.load(state.channel_p_g),
                     chunk.load(state.channel_p_b)};

@@ -115,7 +115,7 @@ struct FlightResults {
 // What shade_surface's batched part computed for each entry of its queue: the hit point and
 // geometric normal, the dielectric's parameters there, its BSDF sample (the light-side
 // direction in world space, the local cosine, f, pdf and flags kSurfaceSample*), and the
-// event's light-sample and roulette numbers.
+// event's light-sample and roulette numbers (drawn for the chunks that may use them).
 inline constexpr uint32_t kSurfaceSampleValid = 1, kSurfaceSampleTransmission = 2,
                           kSurfaceSampleDelta = 4;
 struct SurfaceResults {
@@ -138,9 +138,11 @@ struct SurfaceResults {
         u_light1(padded_capacity(capacity)),
         u_light2(padded_capacity(capacity)),
         u_roulette(padded_capacity(capacity)),
+        light_sampled(padded_capacity(capacity)),
         flags(padded_capacity(capacity)) {}
   AlignedArray<float> px, py, pz, nx, ny, nz, eta, alpha, wx, wy, wz, cos_local, f, pdf;
   AlignedArray<float> u_light0, u_light1, u_light2, u_roulette;
+  AlignedArray<uint32_t> light_sampled;  // 1 where the per-slot pass may sample a light
   AlignedArray<uint32_t> flags;
 };
 

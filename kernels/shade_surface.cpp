@@ -36,6 +36,9 @@ void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQue
     out.px[k] = p.x, out.py[k] = p.y, out.pz[k] = p.z;
     out.nx[k] = normal.x, out.ny[k] = normal.y, out.nz[k] = normal.z;
     out.eta[k] = d.eta, out.alpha[k] = d.alpha;
+    // The per-slot pass samples a light at every surface but null and delta ones.
+    out.light_sampled[k] = info.kind != MaterialKind::kNull &&
+                           !(info.kind == MaterialKind::kDielectric && info.dielectric.delta());
   }
   for (size_t k = n; k < (n + simd::kLanes - 1) / simd::kLanes * simd::kLanes; ++k) {
     for (AlignedArray<float>* field :
@@ -60,14 +63,22 @@ void sample_chunk(const KernelContext& ctx, const PathState& state, const simd::
   const UintBatch event = chunk.load(state.event);
   const simd::RandomBlockBatch r =
       simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kBsdf);
-  const simd::RandomBlockBatch light =
-      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kLightSample);
-  light.u[0].store_aligned(out.u_light0.data() + k);
-  light.u[1].store_aligned(out.u_light1.data() + k);
-  light.u[2].store_aligned(out.u_light2.data() + k);
-  simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette)
-      .u[0]
-      .store_aligned(out.u_roulette.data() + k);
+  // Light-sample and roulette numbers only for chunks where some path may use them (a
+  // non-delta surface; the fourth vertex on), so the one-slot megakernel draws what it needs.
+  if (!ctx.lights->empty() &&
+      std::any_of(out.light_sampled.data() + k, out.light_sampled.data() + k + chunk.count(),
+                  [](uint32_t b) { return b != 0; })) {
+    const simd::RandomBlockBatch light =
+        simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kLightSample);
+    light.u[0].store_aligned(out.u_light0.data() + k);
+    light.u[1].store_aligned(out.u_light1.data() + k);
+    light.u[2].store_aligned(out.u_light2.data() + k);
+  }
+  if (xsimd::any(chunk.load(state.depth) >= UintBatch(3u))) {
+    simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette)
+        .u[0]
+        .store_aligned(out.u_roulette.data() + k);
+  }
   const simd::BsdfSampleBatch bs = simd::dielectric_sample({at(out.eta), at(out.alpha)}, wo, r.u[0],
                                                            r.u[1], r.u[2], chunk.count());
   const simd::Vec3Batch wi = frame.to_world(bs.wi);
