@@ -36,7 +36,7 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
     const UintBatch pixel = simd::load_padded(pixels + begin, count);
     const UintBatch sample = simd::load_padded(samples + begin, count);
     const simd::RandomBlockBatch r =
-        simd::random_block(ctx.seed, pixel, sample, UintBatch(0u), RngPurpose::kCamera);
+        simd::random_block(ctx.seed, pixel, sample, UintBatch(0u), RngPurpose::kCamera, count);
     const simd::Vec3Batch d = simd::camera_direction(camera, pixel, r.u[0], r.u[1]);
     chunk.store(state.pixel, pixel);
     chunk.store(state.sample, sample);

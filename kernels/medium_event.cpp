@@ -39,13 +39,13 @@ void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chun
   const UintBatch pixel = chunk.load(state.pixel), sample = chunk.load(state.sample);
   const UintBatch event = chunk.load(state.event);
   const simd::RandomBlockBatch rf =
-      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kFreeFlight);
+      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kFreeFlight, chunk.count());
   const simd::RandomBlockBatch rp =
-      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kPhase);
+      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kPhase, chunk.count());
   // Roulette starts at the fourth vertex, which this event makes for depth 3 and up; a chunk
   // without such a path (and the one-slot megakernel's early events) draws nothing for it.
   if (xsimd::any(chunk.load(state.depth) >= UintBatch(3u))) {
-    simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette)
+    simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette, chunk.count())
         .u[0]
         .store_aligned(out.u_roulette.data() + k);
   }

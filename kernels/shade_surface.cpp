@@ -62,20 +62,20 @@ void sample_chunk(const KernelContext& ctx, const PathState& state, const simd::
   const UintBatch pixel = chunk.load(state.pixel), sample = chunk.load(state.sample);
   const UintBatch event = chunk.load(state.event);
   const simd::RandomBlockBatch r =
-      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kBsdf);
+      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kBsdf, chunk.count());
   // Light-sample and roulette numbers only for chunks where some path may use them (a
   // non-delta surface; the fourth vertex on), so the one-slot megakernel draws what it needs.
   if (!ctx.lights->empty() &&
       std::any_of(out.light_sampled.data() + k, out.light_sampled.data() + k + chunk.count(),
                   [](uint32_t b) { return b != 0; })) {
     const simd::RandomBlockBatch light =
-        simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kLightSample);
+        simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kLightSample, chunk.count());
     light.u[0].store_aligned(out.u_light0.data() + k);
     light.u[1].store_aligned(out.u_light1.data() + k);
     light.u[2].store_aligned(out.u_light2.data() + k);
   }
   if (xsimd::any(chunk.load(state.depth) >= UintBatch(3u))) {
-    simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette)
+    simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kRussianRoulette, chunk.count())
         .u[0]
         .store_aligned(out.u_roulette.data() + k);
   }

@@ -17,9 +17,9 @@ simd::Vec3Batch probe_directions(const KernelContext& ctx, const PathState& stat
                                  const simd::SlotChunk& chunk) {
   // x_i is the path's newest vertex (x_j of its memory): medium_event already pushed it and
   // advanced the event counter past it, so the draw is keyed by the event before.
-  const simd::RandomBlockBatch r =
-      simd::random_block(ctx.seed, chunk.load(state.pixel), chunk.load(state.sample),
-                         chunk.load(state.event) - simd::UintBatch(1u), RngPurpose::kSneeProbe);
+  const simd::RandomBlockBatch r = simd::random_block(
+      ctx.seed, chunk.load(state.pixel), chunk.load(state.sample),
+      chunk.load(state.event) - simd::UintBatch(1u), RngPurpose::kSneeProbe, chunk.count());
   if (ctx.snee.probe == ProbeDirections::kUniformSphere)
     return simd::sample_uniform_sphere(r.u[0], r.u[1]);
   const simd::Vec3Batch w_in{chunk.load(state.wjn_x), chunk.load(state.wjn_y),

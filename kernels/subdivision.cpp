@@ -24,7 +24,7 @@ void draw_chunk(const KernelContext& ctx, const PathState& state, const simd::Sl
   const simd::UintBatch event = chunk.load(state.event) - simd::UintBatch(1u);
   for (int b = 0; b < (bottom_to_top ? 4 : 2); ++b) {
     const simd::RandomBlockBatch r =
-        simd::random_block(ctx.seed, pixel, sample, event, kBlockPurposes[b]);
+        simd::random_block(ctx.seed, pixel, sample, event, kBlockPurposes[b], chunk.count());
     for (int j = 0; j < 4; ++j) r.u[j].store_aligned(out.u[4 * b + j].data() + k);
   }
 }

@@ -94,5 +94,31 @@ TEST(PhiloxBatch, RandomBlockMatchesScalarForEveryPurpose) {
   }
 }
 
+// The chunk form: a one-slot chunk takes the scalar shortcut, wider chunks the batch; lane 0
+// (and, for full chunks, every lane) must carry the same bits either way.
+TEST(PhiloxBatch, ChunkFormMatchesTheBatchOnItsActiveLanes) {
+  std::mt19937 engine(4);
+  for (int trial = 0; trial < 2000; ++trial) {
+    Lanes pixel, sample, event;
+    for (size_t i = 0; i < kLanes; ++i) {
+      pixel.v[i] = engine() % 65536;
+      sample.v[i] = engine() % 1024;
+      event.v[i] = engine() % 64;
+    }
+    const auto purpose = static_cast<RngPurpose>(trial % static_cast<int>(RngPurpose::kCount));
+    const simd::RandomBlockBatch batch =
+        simd::random_block(7, pixel.batch(), sample.batch(), event.batch(), purpose);
+    for (const size_t active : {size_t{1}, kLanes}) {
+      const simd::RandomBlockBatch chunk =
+          simd::random_block(7, pixel.batch(), sample.batch(), event.batch(), purpose, active);
+      for (size_t w = 0; w < 4; ++w)
+        for (size_t i = 0; i < active; ++i)
+          ASSERT_EQ(std::bit_cast<uint32_t>(chunk.u[w].get(i)),
+                    std::bit_cast<uint32_t>(batch.u[w].get(i)))
+              << "active " << active << " lane " << i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace snee
