@@ -4,7 +4,7 @@
 # `snee compare` renders pt and snee at equal time against a long snee reference, three times
 # with independent seeds (the reference is made once, by the first run). Writes
 # out/grid/<scene>/run<N>/ (EXRs, compare.json, contact-sheet.png) and prints a markdown table
-# of the median efficiency ratios (python3 formats it).
+# of the median efficiency ratios (scripts/grid-table.py).
 # Usage: scripts/paper-grid.sh [SECONDS] [REF_SPP] [RES] [RUNS]
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -28,22 +28,4 @@ for object in sphere bunny; do
     done
   done
 done
-python3 - <<'PY'
-import json, pathlib, statistics
-print("| scene | spp pt / snee | relMSE pt | relMSE snee | efficiency snee / pt | trimmed relMSE pt | snee | efficiency ratio (trimmed) |")
-print("|---|---:|---:|---:|---:|---:|---:|---:|")
-for d in sorted(pathlib.Path("out/grid").iterdir()):
-    runs = [json.loads(p.read_text()) for p in sorted(d.glob("run*/compare.json"))]
-    pt = [r["integrators"][0] for r in runs]
-    sn = [r["integrators"][1] for r in runs]
-    med = lambda xs: statistics.median(xs)
-    spp = f'{med([p["spp"] for p in pt]):.0f} / {med([s["spp"] for s in sn]):.0f}'
-    ratios = [s["efficiency_vs_first"] for s in sn]
-    trimmed = [s["efficiency_trimmed_vs_first"] for s in sn]
-    print(f'| {d.name} | {spp} | {med([p["relative_mse"] for p in pt]):.3g} | '
-          f'{med([s["relative_mse"] for s in sn]):.3g} | {med(ratios):.2f} '
-          f'({min(ratios):.2f}-{max(ratios):.2f}) | '
-          f'{med([p["relative_mse_trimmed"] for p in pt]):.3g} | '
-          f'{med([s["relative_mse_trimmed"] for s in sn]):.3g} | {med(trimmed):.2f} '
-          f'({min(trimmed):.2f}-{max(trimmed):.2f}) |')
-PY
+python3 scripts/grid-table.py out/grid
