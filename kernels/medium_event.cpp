@@ -1,5 +1,6 @@
 #include <algorithm>
 
+#include "kernels/batched_pass.h"
 #include "kernels/medium/free_flight.h"
 #include "kernels/medium/henyey_greenstein.h"
 #include "kernels/medium_lanes.h"
@@ -115,11 +116,9 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
                   KernelCounters& counters) {
   const size_t n = q.medium.size();
   FlightResults& flights = q.flights;
-  for (size_t k = 0; k < n; k += simd::kLanes) {
-    const size_t count = std::min(simd::kLanes, n - k);
-    fly(ctx, state, simd::SlotChunk(q.medium.begin() + k, count), flights, k);
-    counters.count_lanes(BatchedKernel::kMediumFlights, count, simd::kLanes);
-  }
+  for_each_chunk(
+      q.medium.begin(), n, BatchedKernel::kMediumFlights, counters,
+      [&](const simd::SlotChunk& chunk, size_t k) { fly(ctx, state, chunk, flights, k); });
   for (size_t k = 0; k < n; ++k) {
     const uint32_t s = q.medium[k];
     const float t_hit = state.hit_t[s];

@@ -99,16 +99,10 @@ inline size_t padded_capacity(size_t n) {
 // flight distance, the scattering point it reaches and the phase-sampled direction from there,
 // with its pdf, and the event's roulette number.
 struct FlightResults {
-  explicit FlightResults(size_t capacity)
-      : t(padded_capacity(capacity)),
-        x(padded_capacity(capacity)),
-        y(padded_capacity(capacity)),
-        z(padded_capacity(capacity)),
-        wx(padded_capacity(capacity)),
-        wy(padded_capacity(capacity)),
-        wz(padded_capacity(capacity)),
-        phase_pdf(padded_capacity(capacity)),
-        u_roulette(padded_capacity(capacity)) {}
+  explicit FlightResults(size_t capacity) {
+    for (AlignedArray<float>* a : {&t, &x, &y, &z, &wx, &wy, &wz, &phase_pdf, &u_roulette})
+      *a = AlignedArray<float>(padded_capacity(capacity));
+  }
   AlignedArray<float> t, x, y, z, wx, wy, wz, phase_pdf, u_roulette;
 };
 
@@ -119,27 +113,14 @@ struct FlightResults {
 inline constexpr uint32_t kSurfaceSampleValid = 1, kSurfaceSampleTransmission = 2,
                           kSurfaceSampleDelta = 4;
 struct SurfaceResults {
-  explicit SurfaceResults(size_t capacity)
-      : px(padded_capacity(capacity)),
-        py(padded_capacity(capacity)),
-        pz(padded_capacity(capacity)),
-        nx(padded_capacity(capacity)),
-        ny(padded_capacity(capacity)),
-        nz(padded_capacity(capacity)),
-        eta(padded_capacity(capacity)),
-        alpha(padded_capacity(capacity)),
-        wx(padded_capacity(capacity)),
-        wy(padded_capacity(capacity)),
-        wz(padded_capacity(capacity)),
-        cos_local(padded_capacity(capacity)),
-        f(padded_capacity(capacity)),
-        pdf(padded_capacity(capacity)),
-        u_light0(padded_capacity(capacity)),
-        u_light1(padded_capacity(capacity)),
-        u_light2(padded_capacity(capacity)),
-        u_roulette(padded_capacity(capacity)),
-        light_sampled(padded_capacity(capacity)),
-        flags(padded_capacity(capacity)) {}
+  explicit SurfaceResults(size_t capacity) {
+    for (AlignedArray<float>* a :
+         {&px, &py, &pz, &nx, &ny, &nz, &eta, &alpha, &wx, &wy, &wz, &cos_local, &f, &pdf,
+          &u_light0, &u_light1, &u_light2, &u_roulette})
+      *a = AlignedArray<float>(padded_capacity(capacity));
+    for (AlignedArray<uint32_t>* a : {&light_sampled, &flags})
+      *a = AlignedArray<uint32_t>(padded_capacity(capacity));
+  }
   AlignedArray<float> px, py, pz, nx, ny, nz, eta, alpha, wx, wy, wz, cos_local, f, pdf;
   AlignedArray<float> u_light0, u_light1, u_light2, u_roulette;
   AlignedArray<uint32_t> light_sampled;  // 1 where the per-slot pass may sample a light

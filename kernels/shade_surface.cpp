@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 
+#include "kernels/batched_pass.h"
 #include "kernels/bsdf/dielectric.h"
 #include "kernels/bsdf/diffuse.h"
 #include "kernels/exit_event.h"
@@ -167,11 +168,9 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
   SurfaceResults& hits = q.surfaces;
   const size_t n_hits = q.surface.size();
   gather_hits(ctx, state, q.surface, hits);
-  for (size_t k = 0; k < n_hits; k += simd::kLanes) {
-    const size_t count = std::min(simd::kLanes, n_hits - k);
-    sample_chunk(ctx, state, simd::SlotChunk(q.surface.begin() + k, count), hits, k);
-    counters.count_lanes(BatchedKernel::kSurfaceSamples, count, simd::kLanes);
-  }
+  for_each_chunk(
+      q.surface.begin(), n_hits, BatchedKernel::kSurfaceSamples, counters,
+      [&](const simd::SlotChunk& chunk, size_t k) { sample_chunk(ctx, state, chunk, hits, k); });
   for (size_t k = 0; k < n_hits; ++k) {
     const uint32_t s = q.surface[k];
     const Vec3 d = state.direction(s);

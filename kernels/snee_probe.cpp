@@ -1,5 +1,6 @@
 #include <algorithm>
 
+#include "kernels/batched_pass.h"
 #include "kernels/medium_lanes.h"
 #include "kernels/path_ops.h"
 #include "kernels/simd/hg_sample_batch.h"
@@ -33,19 +34,17 @@ void snee_probe(const KernelContext& ctx, PathState& state, StageQueues& q,
                 KernelCounters& counters) {
   RayBatch& rays = q.rays;
   rays.clear();
-  const size_t n = q.probe.size();
-  for (size_t k = 0; k < n; k += simd::kLanes) {
-    const size_t count = std::min(simd::kLanes, n - k);
-    const simd::SlotChunk chunk(q.probe.begin() + k, count);
-    const simd::Vec3Batch w = probe_directions(ctx, state, chunk);
-    alignas(64) float wx[simd::kLanes], wy[simd::kLanes], wz[simd::kLanes];
-    w.x.store_aligned(wx);
-    w.y.store_aligned(wy);
-    w.z.store_aligned(wz);
-    for (size_t l = 0; l < count; ++l)
-      rays.push(state.vertex_j(q.probe[k + l]), {wx[l], wy[l], wz[l]}, 0.0f, kInfinity);
-    counters.count_lanes(BatchedKernel::kProbeDirections, count, simd::kLanes);
-  }
+  for_each_chunk(
+      q.probe.begin(), q.probe.size(), BatchedKernel::kProbeDirections, counters,
+      [&](const simd::SlotChunk& chunk, size_t k) {
+        const simd::Vec3Batch w = probe_directions(ctx, state, chunk);
+        alignas(64) float wx[simd::kLanes], wy[simd::kLanes], wz[simd::kLanes];
+        w.x.store_aligned(wx);
+        w.y.store_aligned(wy);
+        w.z.store_aligned(wz);
+        for (size_t l = 0; l < chunk.count(); ++l)
+          rays.push(state.vertex_j(q.probe[k + l]), {wx[l], wy[l], wz[l]}, 0.0f, kInfinity);
+      });
   ctx.embree->intersect(rays.rays(), rays.hits(), static_cast<unsigned>(rays.size()), false);
   counters.rays[3] += rays.size();
   counters.count(SneeCounter::kProbes, rays.size());

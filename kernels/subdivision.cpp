@@ -1,5 +1,6 @@
 #include <algorithm>
 
+#include "kernels/batched_pass.h"
 #include "kernels/path_ops.h"
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/slot_chunk.h"
@@ -77,11 +78,10 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
   const bool bottom_to_top =
       ctx.snee.enabled.contains(Strategy::kBottomToTop) && ctx.lights->has_escaped_lights();
   SubdivisionRandoms& randoms = q.snee_randoms;
-  for (size_t k = 0; k < exits.size(); k += simd::kLanes) {
-    const size_t count = std::min(simd::kLanes, exits.size() - k);
-    draw_chunk(ctx, state, simd::SlotChunk(exits.slots() + k, count), bottom_to_top, randoms, k);
-    counters.count_lanes(BatchedKernel::kSubdivisionDraws, count, simd::kLanes);
-  }
+  for_each_chunk(exits.slots(), exits.size(), BatchedKernel::kSubdivisionDraws, counters,
+                 [&](const simd::SlotChunk& chunk, size_t k) {
+                   draw_chunk(ctx, state, chunk, bottom_to_top, randoms, k);
+                 });
   const auto u = [&](int n, size_t i) { return randoms.u[n][i]; };
   for (size_t i = 0; i < exits.size(); ++i) {
     const uint32_t s = exits.slot(i);
