@@ -23,20 +23,20 @@ using simd::UintBatch;
 void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQueue& queue,
                  SurfaceResults& out) {
   const size_t n = queue.size();
-  // Lanes that are not dielectric never use the batched sample; they take the interface seen
-  // last, so a chunk of one dielectric and a diffuse floor still runs one sampling path.
-  DielectricParams placeholder;
+  // The interface each entry's lane samples with. Only dielectric entries use their sample;
+  // the others (diffuse, null) repeat the last dielectric's interface, so that a chunk mixing
+  // one dielectric with a diffuse floor stays on one sampling path (dielectric_batch.h).
+  DielectricParams lane_interface;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t s = queue[k];
     const Vec3 p = state.origin(s) + state.direction(s) * state.hit_t[s];
     const uint32_t geom = state.hit_geom[s];
     const Vec3 normal = ctx.embree->normal(geom, state.hit_prim[s], p);
     const SurfaceInfo& info = ctx.surfaces[geom];
-    if (info.kind == MaterialKind::kDielectric) placeholder = info.dielectric;
-    const DielectricParams& d = placeholder;
+    if (info.kind == MaterialKind::kDielectric) lane_interface = info.dielectric;
     out.px[k] = p.x, out.py[k] = p.y, out.pz[k] = p.z;
     out.nx[k] = normal.x, out.ny[k] = normal.y, out.nz[k] = normal.z;
-    out.eta[k] = d.eta, out.alpha[k] = d.alpha;
+    out.eta[k] = lane_interface.eta, out.alpha[k] = lane_interface.alpha;
     // The per-slot pass samples a light at every surface but null and delta ones.
     out.light_sampled[k] = info.kind != MaterialKind::kNull &&
                            !(info.kind == MaterialKind::kDielectric && info.dielectric.delta());
