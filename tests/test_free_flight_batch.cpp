@@ -11,6 +11,7 @@
 #include "kernels/medium/free_flight.h"
 #include "kernels/simd/frame_batch.h"
 #include "kernels/simd/free_flight_batch.h"
+#include "tests/support/lanes.h"
 #include "tests/support/ulp.h"
 
 namespace snee {
@@ -25,16 +26,8 @@ constexpr int64_t kTransmittanceUlps = 2;  // exp(-sigma d)
 constexpr int64_t kMixtureUlps = 4;        // pdf and survival: sums of three exp terms
 constexpr int64_t kChannelPdfUlps = 2;     // sigma exp(-sigma t)
 
-struct Lanes {
-  alignas(64) float v[kLanes];
-  FloatBatch batch() const { return FloatBatch::load_aligned(v); }
-};
-
-Lanes to_lanes(FloatBatch b) {
-  Lanes l;
-  b.store_aligned(l.v);
-  return l;
-}
+using Lanes = test::Lanes<float>;
+using test::to_lanes;
 
 // Tracks the largest ulp distance seen beyond an absolute floor, so a failure reports it.
 struct UlpCheck {

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "kernels/simd/philox_batch.h"
+#include "tests/support/lanes.h"
 
 namespace snee {
 namespace {
@@ -13,16 +14,8 @@ namespace {
 using simd::kLanes;
 using simd::UintBatch;
 
-struct Lanes {
-  alignas(64) uint32_t v[kLanes];
-  UintBatch batch() const { return UintBatch::load_aligned(v); }
-};
-
-Lanes to_lanes(UintBatch b) {
-  Lanes l;
-  b.store_aligned(l.v);
-  return l;
-}
+using Lanes = test::Lanes<uint32_t>;
+using test::to_lanes;
 
 TEST(PhiloxBatch, MulHiLoMatches64BitProduct) {
   std::mt19937 engine(1);

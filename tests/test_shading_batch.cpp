@@ -17,6 +17,7 @@
 #include "kernels/simd/hg_phase_batch.h"
 #include "kernels/simd/hg_sample_batch.h"
 #include "kernels/simd/sampling_batch.h"
+#include "tests/support/lanes.h"
 
 namespace snee {
 namespace {
@@ -24,16 +25,8 @@ namespace {
 using simd::FloatBatch;
 using simd::kLanes;
 
-struct Lanes {
-  alignas(64) float v[kLanes];
-  FloatBatch batch() const { return FloatBatch::load_aligned(v); }
-};
-
-Lanes to_lanes(FloatBatch b) {
-  Lanes l;
-  b.store_aligned(l.v);
-  return l;
-}
+using Lanes = test::Lanes<float>;
+using test::to_lanes;
 
 TEST(ShadingBatch, FresnelMatchesScalarBitwise) {
   std::mt19937 engine(8);
