@@ -9,25 +9,19 @@
 #include "kernels/simd/hg_sample_batch.h"
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/slot_chunk.h"
+#include "kernels/simd/vec3_batch.h"
 #include "kernels/stages.h"
 
 namespace snee {
 
 namespace {
 
+using simd::div;
 using simd::FloatBatch;
+using simd::mul;
+using simd::select;
 using simd::UintBatch;
 using simd::Vec3Batch;
-
-Vec3Batch mul(const Vec3Batch& a, const Vec3Batch& b) {
-  return {a.x * b.x, a.y * b.y, a.z * b.z};
-}
-Vec3Batch div(const Vec3Batch& a, FloatBatch s) {
-  return {a.x / s, a.y / s, a.z / s};
-}
-Vec3Batch select(FloatBatch::batch_bool_type m, const Vec3Batch& a, const Vec3Batch& b) {
-  return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
-}
 
 // The straight-line part of a medium event, for one chunk of the queue at position k: free
 // flight with path-level spectral MIS, the throughput and channel probabilities it leaves

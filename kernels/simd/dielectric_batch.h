@@ -14,8 +14,6 @@
 
 namespace snee::simd {
 
-using BoolBatch = FloatBatch::batch_bool_type;
-
 struct DielectricLanes {
   FloatBatch eta, alpha;
   BoolBatch delta() const { return alpha == FloatBatch(0.0f) || eta == FloatBatch(1.0f); }
@@ -29,18 +27,6 @@ struct BsdfSampleBatch {
 
 namespace dielectric_detail {
 
-inline Vec3Batch scale(const Vec3Batch& v, FloatBatch s) {
-  return {v.x * s, v.y * s, v.z * s};
-}
-inline Vec3Batch negate(const Vec3Batch& v) {
-  return {-v.x, -v.y, -v.z};
-}
-inline Vec3Batch select(BoolBatch m, const Vec3Batch& a, const Vec3Batch& b) {
-  return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
-}
-inline BoolBatch select(BoolBatch m, BoolBatch a, BoolBatch b) {
-  return (m && a) || (!m && b);
-}
 inline FloatBatch side_index(FloatBatch wz, FloatBatch eta) {
   return xsimd::select(wz > FloatBatch(0.0f), FloatBatch(1.0f), eta);
 }

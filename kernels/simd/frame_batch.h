@@ -1,14 +1,10 @@
-// Frame::from_normal (scene/math.h) for a batch of lanes, bit for bit: the same branchless
-// basis in the same operation order, with only IEEE-exact operations.
+// Frame::from_normal, to_local and to_world (scene/math.h) for a batch of lanes, bit for bit:
+// the same branchless basis in the same operation order, with only IEEE-exact operations.
 #pragma once
 
-#include "kernels/simd/arch.h"
+#include "kernels/simd/vec3_batch.h"
 
 namespace snee::simd {
-
-inline FloatBatch dot(const Vec3Batch& a, const Vec3Batch& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
 
 struct FrameBatch {
   Vec3Batch s, t, n;

@@ -1,0 +1,34 @@
+// Componentwise arithmetic on Vec3Batch (scene/math.h's Vec3 operators, one batch per
+// component) and lane selection, shared by the batched kernels.
+#pragma once
+
+#include "kernels/simd/arch.h"
+
+namespace snee::simd {
+
+using BoolBatch = FloatBatch::batch_bool_type;
+
+inline FloatBatch dot(const Vec3Batch& a, const Vec3Batch& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline Vec3Batch mul(const Vec3Batch& a, const Vec3Batch& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+inline Vec3Batch scale(const Vec3Batch& v, FloatBatch s) {
+  return {v.x * s, v.y * s, v.z * s};
+}
+inline Vec3Batch div(const Vec3Batch& v, FloatBatch s) {
+  return {v.x / s, v.y / s, v.z / s};
+}
+inline Vec3Batch negate(const Vec3Batch& v) {
+  return {-v.x, -v.y, -v.z};
+}
+inline Vec3Batch select(BoolBatch m, const Vec3Batch& a, const Vec3Batch& b) {
+  return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
+}
+// xsimd 8.1 selects between value batches only.
+inline BoolBatch select(BoolBatch m, BoolBatch a, BoolBatch b) {
+  return (m && a) || (!m && b);
+}
+
+}  // namespace snee::simd
