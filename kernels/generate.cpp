@@ -18,6 +18,8 @@ StageQueues::StageQueues(size_t slots)
       flights(slots),
       surfaces(slots),
       snee_randoms(slots),
+      snee_bottom_to_top(slots),
+      snee_proposals(slots),
       rays(slots),
       shadow(slots * 8) {}
 

@@ -49,10 +49,12 @@ enum class BatchedKernel : int {
   kSurfaceSamples,
   kProbeDirections,
   kSubdivisionDraws,
+  kSubdivisionWeights,
   kCount
 };
 inline constexpr int kBatchedKernels = static_cast<int>(BatchedKernel::kCount);
-// The stage's name: "generate", "medium_event", "shade_surface", "snee_probe", "subdivision".
+// The stage's name: "generate", "medium_event", "shade_surface", "snee_probe", "subdivision";
+// subdivision's second pass, which weighs its proposals, is "subdivision_weights".
 const char* batched_kernel_name(BatchedKernel k);
 
 // Lanes that held a queued slot, and lanes computed (a short chunk still runs at full width).

@@ -79,6 +79,13 @@ class ExitPointQueue {
   }
   uint32_t slot(size_t i) const { return slot_[i]; }
   const uint32_t* slots() const { return slot_.data(); }
+  // Component axis (0, 1, 2) of x_k and n_k by queue position, for batched loads.
+  const float* x_k_component(int axis) const {
+    return (axis == 0 ? x_ : axis == 1 ? y_ : z_).data();
+  }
+  const float* n_k_component(int axis) const {
+    return (axis == 0 ? nx_ : axis == 1 ? ny_ : nz_).data();
+  }
   uint32_t geom(size_t i) const { return geom_[i]; }
   Vec3 x_k(size_t i) const { return {x_[i], y_[i], z_[i]}; }
   Vec3 n_k(size_t i) const { return {nx_[i], ny_[i], nz_[i]}; }
@@ -136,6 +143,20 @@ struct SubdivisionRandoms {
   }
   // u[4 b + j]: number j of block b at each queue position.
   std::array<AlignedArray<float>, 4 * kBlocks> u;
+};
+
+// What subdivision's batched part computed for bottom-to-top at each exit of its queue: the
+// placed middle vertex, the sampled outward direction, the sampling density without the light,
+// and how far it got (kBottomToTop*).
+inline constexpr uint32_t kBottomToTopSampled = 0, kBottomToTopNotPlaced = 1,
+                          kBottomToTopNotRefracted = 2;
+struct BottomToTopResults {
+  explicit BottomToTopResults(size_t capacity) : status(padded_capacity(capacity)) {
+    for (AlignedArray<float>* a : {&x, &y, &z, &wx, &wy, &wz, &pdf})
+      *a = AlignedArray<float>(padded_capacity(capacity));
+  }
+  AlignedArray<float> x, y, z, wx, wy, wz, pdf;
+  AlignedArray<uint32_t> status;
 };
 
 // Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.

@@ -24,6 +24,7 @@ enum class SneeCounter : int {
   kBottomToTopOccluded,     // BT connections with a blocked segment
   kConnectionRays,          // visibility segments of TB and BT connections
   kFourWayExitEvents,       // exit events of the walk weighted against SNEE (U_B, U_L)
+  kScalarWeighings,         // TB/BT proposals whose float weighing left float's range
   kCount
 };
 inline constexpr int kSneeCounterCount = static_cast<int>(SneeCounter::kCount);
@@ -45,7 +46,8 @@ inline const char* snee_counter_name(SneeCounter c) {
                                 "top_to_bottom_occluded",
                                 "bottom_to_top_occluded",
                                 "connection_rays",
-                                "four_way_exit_events"};
+                                "four_way_exit_events",
+                                "scalar_weighings"};
   static_assert(sizeof(names) / sizeof(names[0]) == kSneeCounterCount);
   return names[static_cast<int>(c)];
 }

@@ -6,8 +6,21 @@
 #include "kernels/kernel_context.h"
 #include "kernels/path_state.h"
 #include "kernels/queues.h"
+#include "kernels/snee/snee_strategies.h"
 
 namespace snee {
+
+// Subdivision's proposals that sampled something, in exit order, waiting for the batched
+// weighing. Reserved for two per slot (one per strategy), so filling never allocates.
+struct ProposalQueue {
+  explicit ProposalQueue(size_t slots) { entries.reserve(2 * slots); }
+  struct Entry {
+    SneeProposal proposal;
+    Strategy strategy;
+    uint32_t slot;
+  };
+  std::vector<Entry> entries;
+};
 
 // The queues one work unit cycles through.
 struct StageQueues {
@@ -22,7 +35,9 @@ struct StageQueues {
   FlightResults flights;            // scratch of medium_event's batched part
   SurfaceResults surfaces;          // scratch of shade_surface's batched part
   SubdivisionRandoms snee_randoms;  // scratch of subdivision's batched draws
-  RayBatch rays;                    // scratch for batched Embree queries
+  BottomToTopResults snee_bottom_to_top;  // scratch of subdivision's batched BT placement
+  ProposalQueue snee_proposals;           // scratch of subdivision: proposals waiting to be weighed
+  RayBatch rays;                          // scratch for batched Embree queries
   ShadowQueue shadow;
 };
 

@@ -1,9 +1,13 @@
 #include <algorithm>
+#include <cmath>
 
 #include "kernels/batched_pass.h"
+#include "kernels/medium_lanes.h"
 #include "kernels/path_ops.h"
+#include "kernels/simd/bottom_to_top_batch.h"
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/slot_chunk.h"
+#include "kernels/simd/snee_weights_batch.h"
 #include "kernels/snee/snee_strategies.h"
 #include "kernels/stages.h"
 
@@ -30,6 +34,51 @@ void draw_chunk(const KernelContext& ctx, const PathState& state, const simd::Sl
   }
 }
 
+// Bottom-to-top up to the light lookup for the exits at queue positions [k, k + count), from
+// the random numbers draw_chunk stored there.
+void place_bottom_to_top(const KernelContext& ctx, const PathState& state,
+                         const ExitPointQueue& exits, const simd::SlotChunk& chunk,
+                         const SubdivisionRandoms& randoms, BottomToTopResults& out, size_t k) {
+  using simd::FloatBatch;
+  const size_t count = chunk.count();
+  const auto exit_vector = [&](const float* (ExitPointQueue::*component)(int) const) {
+    return simd::Vec3Batch{simd::load_padded((exits.*component)(0) + k, count),
+                           simd::load_padded((exits.*component)(1) + k, count),
+                           simd::load_padded((exits.*component)(2) + k, count)};
+  };
+  alignas(64) float eta[simd::kLanes], alpha[simd::kLanes];
+  for (size_t l = 0; l < simd::kLanes; ++l) {
+    const DielectricParams& p = ctx.surfaces[exits.geom(k + (l < count ? l : 0))].dielectric;
+    eta[l] = p.eta;
+    alpha[l] = p.alpha;
+  }
+  const simd::BottomToTopExits e{
+      {chunk.load(state.xj_x), chunk.load(state.xj_y), chunk.load(state.xj_z)},
+      {chunk.load(state.wjn_x), chunk.load(state.wjn_y), chunk.load(state.wjn_z)},
+      exit_vector(&ExitPointQueue::x_k_component),
+      exit_vector(&ExitPointQueue::n_k_component),
+      load_media(ctx, state, chunk).g,
+      {FloatBatch::load_aligned(eta), FloatBatch::load_aligned(alpha)}};
+  std::array<FloatBatch, kBottomToTopDimensions> u;
+  for (int n = 0; n < kBottomToTopDimensions; ++n)
+    u[static_cast<size_t>(n)] = FloatBatch::load_aligned(randoms.u[8 + n].data() + k);
+  const simd::BottomToTopBatch bt = simd::propose_bottom_to_top(e, ctx.snee, u, count);
+  bt.x_j.x.store_aligned(out.x.data() + k);
+  bt.x_j.y.store_aligned(out.y.data() + k);
+  bt.x_j.z.store_aligned(out.z.data() + k);
+  bt.omega_o.x.store_aligned(out.wx.data() + k);
+  bt.omega_o.y.store_aligned(out.wy.data() + k);
+  bt.omega_o.z.store_aligned(out.wz.data() + k);
+  bt.pdf.store_aligned(out.pdf.data() + k);
+  const FloatBatch status =
+      xsimd::select(bt.placed,
+                    xsimd::select(bt.refracted, FloatBatch(kBottomToTopSampled),
+                                  FloatBatch(kBottomToTopNotRefracted)),
+                    FloatBatch(kBottomToTopNotPlaced));
+  xsimd::bitwise_cast<simd::UintBatch>(xsimd::batch_cast<int32_t>(status))
+      .store_aligned(out.status.data() + k);
+}
+
 void count_failure(SneeFailure why, Strategy st, KernelCounters& counters) {
   const bool tb = st == Strategy::kTopToBottom;
   switch (why) {
@@ -51,21 +100,54 @@ void count_failure(SneeFailure why, Strategy st, KernelCounters& counters) {
   }
 }
 
-void queue_candidate(const SneeCandidate& c, Strategy st, uint32_t slot, Rgb throughput,
-                     ShadowQueue& shadow, KernelCounters& counters) {
-  if (!c.valid) {
-    count_failure(c.failure, st, counters);
-    return;
-  }
+void queue_connection(Strategy st, uint32_t slot, Rgb contribution,
+                      const std::array<ShadowSegment, 3>& segments, ShadowQueue& shadow,
+                      KernelCounters& counters) {
   const bool tb = st == Strategy::kTopToBottom;
   const uint32_t first = static_cast<uint32_t>(shadow.segment_count());
-  for (const ShadowSegment& seg : c.segments)
+  for (const ShadowSegment& seg : segments)
     shadow.add_segment(seg.origin, seg.direction, seg.t_max, kVisibilityOnly);
   shadow.add_connection({tb ? ConnectionKind::kTopToBottom : ConnectionKind::kBottomToTop, slot,
-                         first, static_cast<uint32_t>(c.segments.size()), -1,
-                         throughput * c.contribution, Rgb(0.0f)});
+                         first, static_cast<uint32_t>(segments.size()), -1, contribution,
+                         Rgb(0.0f)});
   counters.count(tb ? SneeCounter::kTopToBottomConnections : SneeCounter::kBottomToTopConnections);
-  counters.count(SneeCounter::kConnectionRays, c.segments.size());
+  counters.count(SneeCounter::kConnectionRays, segments.size());
+}
+
+// Weighs the proposals in SIMD chunks and queues the connections that carry something, in
+// proposal order. A lane the float weighing cannot hold is weighed by the scalar
+// finish_proposal instead (simd/snee_weights_batch.h).
+void weigh_and_connect(const KernelContext& ctx, const PathState& state, const ProposalQueue& q,
+                       ShadowQueue& shadow, KernelCounters& counters) {
+  const size_t n = q.entries.size();
+  for (size_t k = 0; k < n; k += simd::kLanes) {
+    const size_t count = std::min(simd::kLanes, n - k);
+    const simd::ProposalWeights w = simd::weigh_proposals(
+        [&](size_t l) {
+          const ProposalQueue::Entry& e = q.entries[k + l];
+          return std::pair<const SneeProposal&, Strategy>(e.proposal, e.strategy);
+        },
+        count, ctx.snee);
+    counters.count_lanes(BatchedKernel::kSubdivisionWeights, count, simd::kLanes);
+    for (size_t l = 0; l < count; ++l) {
+      const ProposalQueue::Entry& e = q.entries[k + l];
+      const Rgb beta = state.throughput(e.slot);
+      if (!w.in_range[l]) {
+        counters.count(SneeCounter::kScalarWeighings);
+        const SneeCandidate c = finish_proposal(e.strategy, e.proposal, ctx.snee);
+        if (c.valid) {
+          queue_connection(e.strategy, e.slot, beta * c.contribution, c.segments, shadow, counters);
+        } else {
+          count_failure(c.failure, e.strategy, counters);
+        }
+      } else if (w.weight[l] > 0 && !is_black(w.contribution[l]) && is_finite(w.contribution[l])) {
+        queue_connection(e.strategy, e.slot, beta * w.contribution[l], e.proposal.segments, shadow,
+                         counters);
+      } else {
+        count_failure(SneeFailure::kZero, e.strategy, counters);
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -81,31 +163,48 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
   for_each_chunk(exits.slots(), exits.size(), BatchedKernel::kSubdivisionDraws, counters,
                  [&](const simd::SlotChunk& chunk, size_t k) {
                    draw_chunk(ctx, state, chunk, bottom_to_top, randoms, k);
+                   if (bottom_to_top) {
+                     place_bottom_to_top(ctx, state, exits, chunk, randoms, q.snee_bottom_to_top,
+                                         k);
+                   }
                  });
   const auto u = [&](int n, size_t i) { return randoms.u[n][i]; };
+  ProposalQueue& proposals = q.snee_proposals;
+  proposals.entries.clear();
+  const auto propose = [&](const SneeProposal& p, Strategy st, uint32_t slot) {
+    if (p.failure == SneeFailure::kNone && p.sampling_pdf > 0 && std::isfinite(p.sampling_pdf)) {
+      proposals.entries.push_back({p, st, slot});
+    } else {
+      count_failure(p.failure == SneeFailure::kNone ? SneeFailure::kZero : p.failure, st, counters);
+    }
+  };
   for (size_t i = 0; i < exits.size(); ++i) {
     const uint32_t s = exits.slot(i);
     const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
     const SneeMedium medium{m.sigma_s, m.sigma_t, m.g};
     const SneeOrigin origin{state.vertex_j(s), state.direction_in_j(s)};
     const ExitPoint exit{exits.x_k(i), exits.n_k(i), ctx.surfaces[exits.geom(i)].dielectric};
-    const Rgb beta = state.throughput(s);
-
     if (top_to_bottom) {
       const std::array<float, kTopToBottomDimensions> tb = {u(0, i), u(1, i), u(2, i), u(3, i),
                                                             u(4, i), u(5, i), u(6, i), u(7, i)};
-      const SneeCandidate c =
-          sample_top_to_bottom(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, tb);
-      queue_candidate(c, Strategy::kTopToBottom, s, beta, q.shadow, counters);
+      propose(propose_top_to_bottom(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, tb),
+              Strategy::kTopToBottom, s);
     }
     if (bottom_to_top) {
-      const std::array<float, kBottomToTopDimensions> bt = {u(8, i),  u(9, i),  u(10, i),
-                                                            u(11, i), u(12, i), u(13, i)};
-      const SneeCandidate c =
-          sample_bottom_to_top(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, bt);
-      queue_candidate(c, Strategy::kBottomToTop, s, beta, q.shadow, counters);
+      const BottomToTopResults& bt = q.snee_bottom_to_top;
+      if (bt.status[i] == kBottomToTopNotPlaced) {
+        count_failure(SneeFailure::kPlacement, Strategy::kBottomToTop, counters);
+      } else if (bt.status[i] == kBottomToTopNotRefracted) {
+        count_failure(SneeFailure::kRefraction, Strategy::kBottomToTop, counters);
+      } else {
+        propose(bottom_to_top_proposal(origin, medium, exit, *ctx.lights, ctx.epsilon,
+                                       {bt.x[i], bt.y[i], bt.z[i]}, {bt.wx[i], bt.wy[i], bt.wz[i]},
+                                       bt.pdf[i]),
+                Strategy::kBottomToTop, s);
+      }
     }
   }
+  weigh_and_connect(ctx, state, proposals, q.shadow, counters);
   q.subdivide.clear();
 }
 

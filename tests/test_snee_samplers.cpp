@@ -16,12 +16,17 @@
 #include "kernels/snee/snee_pdfs.h"
 #include "kernels/snee/snee_strategies.h"
 #include "tests/support/chi2.h"
+#include "tests/support/snee_setups.h"
 #include "tests/support/statistics.h"
 
 namespace snee {
 namespace {
 
+using test::ExitSetup;
+using test::light_scene;
+using test::random_setup;
 using test::TestRng;
+using test::uniforms;
 
 // Sampling-time and stand-alone pdfs are computed along different routes (sampling variables
 // vs. the produced float point); they agree to float rounding amplified by the pdf's
@@ -235,37 +240,7 @@ TEST(SneeProbe, AreaOfPatch) {
 
 // --- strategies ------------------------------------------------------------------------------
 
-Scene light_scene(LightKind kind) {
-  Scene scene;
-  Light light;
-  light.kind = kind;
-  light.direction = normalize(Vec3(0.5f, 0.2f, 1.0f));
-  light.half_angle = 0.3f;
-  light.radiance = Rgb(1.0f);
-  light.irradiance = Rgb(1.0f);
-  scene.lights.push_back(light);
-  return scene;
-}
-
 const SneeMedium kMedium{Rgb(1.0f, 0.8f, 0.5f), Rgb(1.2f, 1.1f, 0.9f), 0.0f};
-
-// A medium vertex below the plane z = 0 and an exit point on it that faces the vertex.
-struct ExitSetup {
-  SneeOrigin origin;
-  ExitPoint exit;
-};
-ExitSetup random_setup(TestRng& rng, DielectricParams interface) {
-  const Vec3 x_i(0.3f * rng.uniform(), 0.3f * rng.uniform(), -0.1f - 0.6f * rng.uniform());
-  const Vec3 x_k(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 0.0f);
-  return {{x_i, random_direction(rng)}, {x_k, Vec3(0, 0, 1), interface}};
-}
-
-template <int N>
-std::array<float, N> uniforms(TestRng& rng) {
-  std::array<float, N> u;
-  for (float& x : u) x = rng.uniform();
-  return u;
-}
 
 SneeSuffix suffix_of(const ExitSetup& setup, const SneeMedium& medium, const SneeCandidate& c,
                      const LightTable& lights, bool delta_light) {
@@ -284,12 +259,7 @@ SneeSuffix suffix_of(const ExitSetup& setup, const SneeMedium& medium, const Sne
   return s;
 }
 
-struct StrategyCase {
-  const char* name;
-  DielectricParams interface;
-  LightKind light;
-};
-constexpr StrategyCase kStrategyCases[] = {
+constexpr test::SneeCase kStrategyCases[] = {
     {"A rough+cone", {1.5f, 0.2f}, LightKind::kCone},
     {"B rough+directional", {1.5f, 0.2f}, LightKind::kDirectional},
     {"C smooth+cone", {1.5f, 0.0f}, LightKind::kCone},
@@ -306,7 +276,7 @@ bool well_separated(const ExitSetup& setup, Vec3 x_j) {
 TEST(SneeStrategies, TopToBottomPdfMatchesPdf) {
   TestRng rng(31);
   const SneeOptions options;
-  for (const StrategyCase& sc : kStrategyCases) {
+  for (const test::SneeCase& sc : kStrategyCases) {
     const Scene scene = light_scene(sc.light);
     const LightTable lights(scene);
     int compared = 0;
@@ -332,7 +302,7 @@ TEST(SneeStrategies, BottomToTopPdfMatchesPdf) {
     SneeMedium medium = kMedium;
     medium.g = g;
     const SneeOptions options;
-    for (const StrategyCase& sc : kStrategyCases) {
+    for (const test::SneeCase& sc : kStrategyCases) {
       if (sc.light == LightKind::kDirectional) continue;  // BT never reaches a delta light
       const Scene scene = light_scene(sc.light);
       const LightTable lights(scene);

@@ -1,5 +1,5 @@
 // Componentwise arithmetic on Vec3Batch (scene/math.h's Vec3 operators, one batch per
-// component) and lane selection, shared by the batched kernels.
+// component), the cross product and lane selection, shared by the batched kernels.
 #pragma once
 
 #include "kernels/simd/arch.h"
@@ -10,6 +10,15 @@ using BoolBatch = FloatBatch::batch_bool_type;
 
 inline FloatBatch dot(const Vec3Batch& a, const Vec3Batch& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline Vec3Batch add(const Vec3Batch& a, const Vec3Batch& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline Vec3Batch sub(const Vec3Batch& a, const Vec3Batch& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline Vec3Batch cross(const Vec3Batch& a, const Vec3Batch& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 inline Vec3Batch mul(const Vec3Batch& a, const Vec3Batch& b) {
   return {a.x * b.x, a.y * b.y, a.z * b.z};

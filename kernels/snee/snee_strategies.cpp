@@ -5,18 +5,13 @@
 
 #include "kernels/snee/distance_samplers.h"
 #include "kernels/snee/joint_importance.h"
+#include "kernels/snee/probe.h"
 #include "kernels/snee/snee_integrand.h"
 #include "kernels/snee/snee_pdfs.h"
 
 namespace snee {
 
 namespace {
-
-SneeCandidate failed(SneeFailure why) {
-  SneeCandidate c;
-  c.failure = why;
-  return c;
-}
 
 SneeSuffix make_suffix(const SneeOrigin& origin, const SneeMedium& medium, const ExitPoint& exit,
                        Vec3 x_j, Vec3 omega_o, float light_pdf, bool light_delta) {
@@ -45,57 +40,51 @@ ShadowSegment segment_between(Vec3 from, Vec3 to) {
   return {from, d / length_d, length_d};
 }
 
-// Finishes a candidate: MIS weight from the shared pdf functions, contribution from the sampling
-// pdf. Fails when nothing would be added.
-SneeCandidate finish(Strategy st, const SneeSuffix& s, Rgb emitted, double sampling_pdf,
-                     const SneeOptions& options, std::array<ShadowSegment, 3> segments) {
-  if (!(sampling_pdf > 0) || !std::isfinite(sampling_pdf)) return {};
-  const SuffixGeometry g = suffix_geometry(s);
-  const double weight = mis_weight(st, strategy_pdfs(s, g, options), options);
-  if (!(weight > 0)) return {};
-  const Rgb f = suffix_integrand(s, g, emitted);
-  const Rgb contribution = f * static_cast<float>(weight / sampling_pdf);
-  if (is_black(contribution) || !is_finite(contribution)) return {};
-  SneeCandidate c;
-  c.x_j = s.x_j;
-  c.omega_o = s.omega_o;
-  c.segments = segments;
-  c.contribution = contribution;
-  c.pdf = sampling_pdf;
-  c.weight = weight;
-  c.valid = true;
-  c.failure = SneeFailure::kNone;
-  return c;
+SneeProposal proposal(const SneeSuffix& s, Rgb emitted, double sampling_pdf,
+                      std::array<ShadowSegment, 3> segments) {
+  SneeProposal p;
+  p.suffix = s;
+  p.emitted = emitted;
+  p.sampling_pdf = sampling_pdf;
+  p.segments = segments;
+  p.failure = SneeFailure::kNone;
+  return p;
+}
+
+SneeProposal failed_proposal(SneeFailure why) {
+  SneeProposal p;
+  p.failure = why;
+  return p;
 }
 
 }  // namespace
 
-SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
+SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kTopToBottomDimensions> u) {
   const LightSample light = lights.sample(exit.x_k, u[0], Vec2{u[1], u[2]});
   if (!light.valid || !(light.pdf > 0) || is_black(light.radiance)) {
-    return failed(SneeFailure::kNoLight);
+    return failed_proposal(SneeFailure::kNoLight);
   }
   const double cos_o = dot(exit.n_k, light.wi);
-  if (!(cos_o > 0)) return failed(SneeFailure::kNoLight);
+  if (!(cos_o > 0)) return failed_proposal(SneeFailure::kNoLight);
 
   // Inward direction: transmission lobe only, given the light-side direction.
   const Frame frame = Frame::from_normal(exit.n_k);
   const Vec3 local_o = frame.to_local(light.wi);
   Vec3 local_kj;
   if (!dielectric_sample_transmission(exit.interface, local_o, Vec2{u[3], u[4]}, &local_kj)) {
-    return failed(SneeFailure::kRefraction);
+    return failed_proposal(SneeFailure::kRefraction);
   }
   const Vec3 omega_kj = normalize(frame.to_world(local_kj));
   const double cos_kj = -dot(exit.n_k, omega_kj);
-  if (!(cos_kj > 0)) return failed(SneeFailure::kRefraction);
+  if (!(cos_kj > 0)) return failed_proposal(SneeFailure::kRefraction);
 
   const DistanceMixture mixture{medium.sigma_t, options.c_exponential, exit.x_k, omega_kj,
                                 origin.x_i};
   const DistanceSample distance = distance_mixture_sample(mixture, u[5], u[6], u[7]);
-  if (!distance.valid || !(distance.t > 0)) return failed(SneeFailure::kZero);
+  if (!distance.valid || !(distance.t > 0)) return failed_proposal(SneeFailure::kZero);
   const Vec3 x_j = exit.x_k + distance.t * omega_kj;
 
   SneeSuffix s = make_suffix(origin, medium, exit, x_j, light.wi, light.pdf, light.delta);
@@ -119,49 +108,97 @@ SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
 
   const Vec3 inner = exit.x_k - epsilon * exit.n_k, outer = exit.x_k + epsilon * exit.n_k;
   const ShadowRay to_light = shadow_ray_to_light(light, exit.x_k, outer);
-  return finish(Strategy::kTopToBottom, s, light.radiance, pdf, options,
-                {segment_between(inner, x_j), segment_between(x_j, origin.x_i),
-                 ShadowSegment{outer, to_light.direction, to_light.t_max}});
+  return proposal(s, light.radiance, pdf,
+                  {segment_between(inner, x_j), segment_between(x_j, origin.x_i),
+                   ShadowSegment{outer, to_light.direction, to_light.t_max}});
 }
 
-SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,
+SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kBottomToTopDimensions> u) {
   const JointImportance jis{origin.x_i, origin.omega_in, exit.x_k, medium.g, options.c_joint};
   const JointImportanceSample placed = joint_importance_sample(jis, u.first<4>());
-  if (!placed.valid) return failed(SneeFailure::kPlacement);
+  if (!placed.valid) return failed_proposal(SneeFailure::kPlacement);
   const Vec3 x_j = placed.x_j;
   const Vec3 to_k = exit.x_k - x_j;
   const float r_jk = length(to_k);
-  if (!(r_jk > 0)) return failed(SneeFailure::kPlacement);
+  if (!(r_jk > 0)) return failed_proposal(SneeFailure::kPlacement);
   const Vec3 omega_kj = -to_k / r_jk;
   // x_j must lie on the medium side of x_k.
-  if (!(dot(exit.n_k, omega_kj) < 0)) return failed(SneeFailure::kPlacement);
+  if (!(dot(exit.n_k, omega_kj) < 0)) return failed_proposal(SneeFailure::kPlacement);
 
   // Outward direction: transmission lobe only, given the medium-side direction.
   const Frame frame = Frame::from_normal(exit.n_k);
   const Vec3 local_kj = frame.to_local(omega_kj);
   Vec3 local_o;
   if (!dielectric_sample_transmission(exit.interface, local_kj, Vec2{u[4], u[5]}, &local_o)) {
-    return failed(SneeFailure::kRefraction);
+    return failed_proposal(SneeFailure::kRefraction);
   }
   const Vec3 omega_o = normalize(frame.to_world(local_o));
-  if (!(dot(exit.n_k, omega_o) > 0)) return failed(SneeFailure::kRefraction);
-  const Rgb emitted = lights.escaped_radiance(omega_o);
-  if (is_black(emitted)) return failed(SneeFailure::kNoLight);
-
-  const SneeSuffix s =
-      make_suffix(origin, medium, exit, x_j, omega_o, lights.escaped_pdf(omega_o), false);
-  double pdf = probe_pdf(s, options) * placed.pdf;
+  if (!(dot(exit.n_k, omega_o) > 0)) return failed_proposal(SneeFailure::kRefraction);
+  double pdf =
+      probe_area_pdf(options.probe, origin.omega_in, medium.g, origin.x_i, exit.x_k, exit.n_k) *
+      placed.pdf;
   if (!exit.interface.delta()) {
     pdf *= dielectric_transmission_pdf(exit.interface, local_kj, local_o);
   }
+  return bottom_to_top_proposal(origin, medium, exit, lights, epsilon, x_j, omega_o, pdf);
+}
 
+SneeProposal bottom_to_top_proposal(const SneeOrigin& origin, const SneeMedium& medium,
+                                    const ExitPoint& exit, const LightTable& lights, float epsilon,
+                                    Vec3 x_j, Vec3 omega_o, double sampling_pdf) {
+  const Rgb emitted = lights.escaped_radiance(omega_o);
+  if (is_black(emitted)) return failed_proposal(SneeFailure::kNoLight);
+  const SneeSuffix s =
+      make_suffix(origin, medium, exit, x_j, omega_o, lights.escaped_pdf(omega_o), false);
   const Vec3 inner = exit.x_k - epsilon * exit.n_k, outer = exit.x_k + epsilon * exit.n_k;
-  return finish(Strategy::kBottomToTop, s, emitted, pdf, options,
-                {segment_between(origin.x_i, x_j), segment_between(x_j, inner),
-                 ShadowSegment{outer, omega_o, kInfinity}});
+  return proposal(s, emitted, sampling_pdf,
+                  {segment_between(origin.x_i, x_j), segment_between(x_j, inner),
+                   ShadowSegment{outer, omega_o, kInfinity}});
+}
+
+SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
+                                   const ExitPoint& exit, const LightTable& lights,
+                                   const SneeOptions& options, float epsilon,
+                                   std::span<const float, kTopToBottomDimensions> u) {
+  return finish_proposal(Strategy::kTopToBottom,
+                         propose_top_to_bottom(origin, medium, exit, lights, options, epsilon, u),
+                         options);
+}
+
+SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,
+                                   const ExitPoint& exit, const LightTable& lights,
+                                   const SneeOptions& options, float epsilon,
+                                   std::span<const float, kBottomToTopDimensions> u) {
+  return finish_proposal(Strategy::kBottomToTop,
+                         propose_bottom_to_top(origin, medium, exit, lights, options, epsilon, u),
+                         options);
+}
+
+SneeCandidate finish_proposal(Strategy st, const SneeProposal& p, const SneeOptions& options) {
+  SneeCandidate c;
+  c.failure = p.failure;
+  if (p.failure != SneeFailure::kNone) return c;
+  c.failure = SneeFailure::kZero;
+  if (!(p.sampling_pdf > 0) || !std::isfinite(p.sampling_pdf)) return c;
+  const SneeSuffix& s = p.suffix;
+  const SuffixGeometry g = suffix_geometry(s);
+  const double weight = mis_weight(st, strategy_pdfs(s, g, options), options);
+  if (!(weight > 0)) return c;
+  const Rgb f = suffix_integrand(s, g, p.emitted);
+  const Rgb contribution = f * static_cast<float>(weight / p.sampling_pdf);
+  if (is_black(contribution) || !is_finite(contribution)) return c;
+  c.x_j = s.x_j;
+  c.omega_o = s.omega_o;
+  c.segments = p.segments;
+  c.contribution = contribution;
+  c.pdf = p.sampling_pdf;
+  c.weight = weight;
+  c.valid = true;
+  c.failure = SneeFailure::kNone;
+  return c;
 }
 
 double snee_exit_weight(Strategy st, const SneeSuffix& s, const SneeOptions& options) {

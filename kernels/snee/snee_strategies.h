@@ -59,6 +59,19 @@ struct SneeCandidate {
   SneeFailure failure = SneeFailure::kZero;
 };
 
+// A strategy's sample before its MIS weight: the suffix it proposes, the light's radiance along
+// omega_o, the density of having sampled it, and the segments that must be clear. Proposing
+// branches on the light and the interface and runs one exit at a time; weighing (the four-way
+// pdfs, the weight and the integrand) is straight-line and runs either here (finish_proposal)
+// or a batch at a time (simd/snee_weights_batch.h).
+struct SneeProposal {
+  SneeSuffix suffix;
+  Rgb emitted{0.0f};
+  double sampling_pdf = 0;  // p_s as computed while sampling, in the suffix's measure
+  std::array<ShadowSegment, 3> segments;
+  SneeFailure failure = SneeFailure::kZero;  // kNone when there is something to weigh
+};
+
 // epsilon: scene-scale offset of ray origins on the boundary, along -n_k for segments inside the
 // medium and +n_k for the light segment. Medium points are never offset.
 
@@ -66,6 +79,11 @@ struct SneeCandidate {
 // the inward transmission, u[5] distance technique, u[6] free-flight colour channel, u[7]
 // distance.
 inline constexpr int kTopToBottomDimensions = 8;
+SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
+                                   const ExitPoint& exit, const LightTable& lights,
+                                   const SneeOptions& options, float epsilon,
+                                   std::span<const float, kTopToBottomDimensions> u);
+// propose_top_to_bottom, then finish_proposal.
 SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,
@@ -75,10 +93,25 @@ SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
 // distance; joint_importance.h), u[4..5] microfacet normal of the outward transmission.
 // Only lights reached by escaping rays (environment, cone) are found this way.
 inline constexpr int kBottomToTopDimensions = 6;
+SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,
+                                   const ExitPoint& exit, const LightTable& lights,
+                                   const SneeOptions& options, float epsilon,
+                                   std::span<const float, kBottomToTopDimensions> u);
+// The end of propose_bottom_to_top, once x_j is placed and omega_o sampled with density
+// sampling_pdf (probe, placement and outward refraction; simd/bottom_to_top_batch.h does the
+// part before): looks up the light along omega_o and builds the proposal.
+SneeProposal bottom_to_top_proposal(const SneeOrigin& origin, const SneeMedium& medium,
+                                    const ExitPoint& exit, const LightTable& lights, float epsilon,
+                                    Vec3 x_j, Vec3 omega_o, double sampling_pdf);
+// propose_bottom_to_top, then finish_proposal.
 SneeCandidate sample_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kBottomToTopDimensions> u);
+
+// Weighs a proposal of strategy st: MIS weight from the shared pdf functions, contribution
+// w_s F / p_s. Fails (kZero) when nothing would be added; passes a failed proposal's reason on.
+SneeCandidate finish_proposal(Strategy st, const SneeProposal& p, const SneeOptions& options);
 
 // MIS weight of the tracer's exit event st (U_B: BSDF-sampled transmission at x_k reaching a
 // light; U_L: light sample at x_k) for the suffix stored along the walk: x_i with its incoming

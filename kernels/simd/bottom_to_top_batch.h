@@ -1,0 +1,68 @@
+// The straight-line part of propose_bottom_to_top (snee/snee_strategies.cpp) for a batch of
+// exits: joint-importance placement of x_j, the check that it lies on the medium side of x_k,
+// the outward transmission sample and the sampling density, without the light. What is left
+// per exit (is there a light along omega_o, and its pdf) branches on the light table and stays
+// scalar: snee/snee_strategies.h, bottom_to_top_proposal.
+#pragma once
+
+#include "kernels/simd/joint_importance_batch.h"
+#include "kernels/simd/snee_pdfs_batch.h"
+
+namespace snee::simd {
+
+struct BottomToTopExits {
+  Vec3Batch x_i, omega_in, x_k, n_k;
+  FloatBatch g;
+  DielectricLanes interface;
+};
+
+struct BottomToTopBatch {
+  Vec3Batch x_j, omega_o;
+  FloatBatch pdf;  // probe, placement and outward refraction; the light pdf not included
+  BoolBatch placed, refracted;  // placement succeeded; and then the outward transmission
+};
+
+// u[0..5] as propose_bottom_to_top's. Lanes [0, active_lanes) are real exits (the GGX azimuth
+// is evaluated for those only, dielectric_batch.h).
+inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const SneeOptions& options,
+                                              const std::array<FloatBatch, 6>& u,
+                                              size_t active_lanes) {
+  using namespace dielectric_detail;
+  const FloatBatch zero(0.0f), one(1.0f);
+  const JointImportanceSampleBatch placed = joint_importance_sample(
+      {e.x_i, e.omega_in, e.x_k, e.g, options.c_joint}, u[0], u[1], u[2], u[3]);
+  const Vec3Batch to_k = sub(e.x_k, placed.x_j);
+  const FloatBatch r_jk = xsimd::sqrt(dot(to_k, to_k));
+  const Vec3Batch omega_kj = div(negate(to_k), r_jk);
+  BottomToTopBatch out;
+  out.x_j = placed.x_j;
+  out.placed = placed.valid && r_jk > zero && dot(e.n_k, omega_kj) < zero;
+
+  // Outward transmission through the macro normal (smooth) or a GGX normal (rough); the
+  // medium-side direction has local z < 0, so the normal is taken on that side.
+  const FrameBatch frame = FrameBatch::from_normal(e.n_k);
+  const Vec3Batch local_kj = frame.to_local(omega_kj);
+  const BoolBatch delta = e.interface.delta();
+  const Vec3Batch macro{zero, zero, FloatBatch(-1.0f)};
+  const Vec3Batch micro = negate(ggx_sample_normal(u[4], u[5], e.interface.alpha, active_lanes));
+  const Vec3Batch m = select(delta, macro, micro);
+  BoolBatch refracts;
+  const Vec3Batch local_o = refract(local_kj, m, e.interface.eta, &refracts);
+  const BoolBatch sampled =
+      local_kj.z < zero && refracts && local_o.z > zero && (delta || dot(local_kj, m) > zero);
+  Vec3Batch omega_o = frame.to_world(local_o);
+  omega_o = div(omega_o, xsimd::sqrt(dot(omega_o, omega_o)));
+  out.omega_o = omega_o;
+  out.refracted = sampled && dot(e.n_k, omega_o) > zero;
+
+  const Vec3Batch ik = sub(e.x_k, e.x_i);
+  const FloatBatch d2 = dot(ik, ik);
+  const FloatBatch probe =
+      probe_area_pdf(options.probe, e.omega_in, e.g, div(ik, xsimd::sqrt(d2)), d2, e.n_k);
+  const FloatBatch btdf =
+      xsimd::select(delta, one, transmission_pair(e.interface, local_kj, local_o).outward);
+  out.pdf = probe * placed.pdf * btdf;
+  return out;
+}
+
+}  // namespace snee::simd

@@ -1,0 +1,47 @@
+// Densities that SNEE's batched sampler and its batched weighing share (snee/probe.cpp and
+// bsdf/dielectric.cpp's transmission pdf), so both compute them one way.
+#pragma once
+
+#include "kernels/simd/dielectric_batch.h"
+#include "kernels/simd/hg_phase_batch.h"
+#include "kernels/snee/snee_options.h"
+
+namespace snee::simd {
+
+// probe_area_pdf: the probe from x_i reaching x_k, with omega_ik the unit direction and d2 the
+// squared distance from x_i to x_k.
+inline FloatBatch probe_area_pdf(ProbeDirections kind, const Vec3Batch& omega_in, FloatBatch g,
+                                 const Vec3Batch& omega_ik, FloatBatch d2, const Vec3Batch& n_k) {
+  const FloatBatch direction = kind == ProbeDirections::kPhaseFunction
+                                   ? hg_phase(dot(omega_in, omega_ik), g)
+                                   : FloatBatch(kInv4Pi);
+  const FloatBatch cos_k = dot(n_k, omega_ik);
+  return xsimd::select(cos_k > FloatBatch(0.0f) && d2 > FloatBatch(0.0f), direction * cos_k / d2,
+                       FloatBatch(0.0f));
+}
+
+// A transmission pair through a rough interface in its local frame (outward normal +z):
+// local_kj on the medium side, local_o outside. Its generalised half vector (oriented to +z)
+// and dielectric_transmission_pdf in both directions.
+struct TransmissionPair {
+  Vec3Batch h;
+  FloatBatch inward;   // pdf of local_kj given local_o (light side to medium side)
+  FloatBatch outward;  // pdf of local_o given local_kj
+};
+
+inline TransmissionPair transmission_pair(const DielectricLanes& p, const Vec3Batch& local_kj,
+                                          const Vec3Batch& local_o) {
+  const FloatBatch zero(0.0f);
+  Vec3Batch h = add(scale(local_kj, p.eta), local_o);
+  h = div(h, xsimd::sqrt(dot(h, h)));
+  h = select(h.z < zero, negate(h), h);
+  const FloatBatch kj_h = dot(local_kj, h), o_h = dot(local_o, h);
+  const BoolBatch ok = h.z > zero && kj_h * local_kj.z > zero && o_h * local_o.z > zero &&
+                       local_kj.z * local_o.z < zero;
+  const FloatBatch denom = o_h + p.eta * kj_h;
+  const FloatBatch d_h = dielectric_detail::ggx_d(h, p.alpha) * h.z / (denom * denom);
+  return {h, xsimd::select(ok, d_h * p.eta * p.eta * xsimd::abs(kj_h), zero),
+          xsimd::select(ok, d_h * xsimd::abs(o_h), zero)};
+}
+
+}  // namespace snee::simd

@@ -1,0 +1,257 @@
+// The weighing half of a SNEE subdivision sample (finish_proposal in snee/snee_strategies.cpp)
+// for a batch of proposals: the suffix's geometry, the densities of the four strategies that
+// can produce it (snee/snee_pdfs.cpp), their multi-sample MIS weight and the suffix integrand
+// (snee/snee_integrand.cpp), each lane with its own medium, interface and light.
+//
+// Every suffix a subdivision strategy proposes is one SNEE can produce (x_i and x_j are medium
+// vertices and x_k is the probe's first hit), so only that case is here. The scalar functions
+// work in double where products of inverse squares meet; this works in float throughout, with
+// three changes that keep it well conditioned: the MIS sum is taken over ratios to the largest
+// density (no squares of large densities), the equiangular angle range is atan2(h, -delta)
+// rather than pi/2 - atan2(-delta, h), and the joint-importance density's geometric lobe is
+// written with its (pi - gamma) / sin(gamma) factors cancelled. A lane whose densities or
+// integrand still leave float's range is flagged, and the caller weighs it with the scalar
+// function. Agreement with the scalar functions is measured in tests/test_snee_weights_batch.cpp
+// and stated in README.md.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "kernels/simd/dielectric_batch.h"
+#include "kernels/simd/free_flight_batch.h"
+#include "kernels/simd/hg_phase_batch.h"
+#include "kernels/simd/snee_pdfs_batch.h"
+#include "kernels/snee/snee_strategies.h"
+
+namespace snee::simd {
+
+// A batch of suffixes x_i -> x_j -> x_k -> light (snee/snee_suffix.h), all producible by SNEE.
+struct SuffixBatch {
+  Vec3Batch x_i, omega_in, x_j, x_k, n_k, omega_o;
+  Vec3Batch sigma_s, sigma_t;
+  FloatBatch g;
+  DielectricLanes interface;
+  FloatBatch light_pdf;
+  BoolBatch light_delta, light_distant;
+};
+
+struct SuffixWeighing {
+  std::array<FloatBatch, kStrategyCount> pdf;  // indexed by Strategy, as StrategyPdfs
+  // suffix_integrand = attenuation * emitted * path, multiplied in that order (as the scalar
+  // function does, so that the same products underflow).
+  Vec3Batch attenuation;
+  FloatBatch path;
+};
+
+namespace snee_weights_detail {
+
+inline FloatBatch mean3(const Vec3Batch& v) {
+  return (v.x + v.y + v.z) * FloatBatch(1.0f / 3.0f);
+}
+
+// equiangular_pdf (snee/distance_samplers.cpp) of the ray o + t w seen from c, at t.
+inline FloatBatch equiangular_pdf(const Vec3Batch& o, const Vec3Batch& w, const Vec3Batch& c,
+                                  FloatBatch t) {
+  const Vec3Batch v = sub(c, o);
+  const FloatBatch delta = dot(v, w);
+  const Vec3Batch p = sub(v, scale(w, delta));
+  const FloatBatch h = xsimd::sqrt(dot(p, p));
+  const FloatBatch range = xsimd::atan2(h, -delta);
+  const FloatBatch r = t - delta;
+  const FloatBatch density = h / (range * (h * h + r * r));
+  const FloatBatch zero(0.0f);
+  return xsimd::select(h > zero && range > zero && t >= zero, density, zero);
+}
+
+}  // namespace snee_weights_detail
+
+inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& options) {
+  using namespace dielectric_detail;
+  using namespace snee_weights_detail;
+  const FloatBatch zero(0.0f), one(1.0f);
+
+  // Geometry (suffix_geometry).
+  const Vec3Batch v_ik = sub(s.x_k, s.x_i), v_ij = sub(s.x_j, s.x_i), v_jk = sub(s.x_k, s.x_j);
+  const FloatBatch d2 = dot(v_ik, v_ik), r_ij2 = dot(v_ij, v_ij), r_jk2 = dot(v_jk, v_jk);
+  const FloatBatch d = xsimd::sqrt(d2), r_ij = xsimd::sqrt(r_ij2), r_jk = xsimd::sqrt(r_jk2);
+  const Vec3Batch omega_ik = div(v_ik, d), omega_ij = div(v_ij, r_ij), omega_jk = div(v_jk, r_jk);
+  const FloatBatch cos_k_j = dot(s.n_k, omega_jk), cos_o = dot(s.n_k, s.omega_o);
+  const FrameBatch frame = FrameBatch::from_normal(s.n_k);
+  const Vec3Batch local_kj = frame.to_local(negate(omega_jk)), local_o = frame.to_local(s.omega_o);
+  // The condition every density and the integrand share: distinct vertices, x_j inside and
+  // omega_o outside of x_k.
+  const BoolBatch exits = d > zero && r_ij > zero && r_jk > zero && cos_o > zero && cos_k_j > zero;
+
+  const FloatBatch probe = probe_area_pdf(options.probe, s.omega_in, s.g, omega_ik, d2, s.n_k);
+
+  // The medium: both phase functions and both segments' transmittance, shared by the walk,
+  // the distance sampler and the integrand.
+  const FloatBatch phase_i = hg_phase(dot(s.omega_in, omega_ij), s.g);
+  const FloatBatch phase_j = hg_phase(dot(omega_ij, omega_jk), s.g);
+  const Vec3Batch tr_ij = transmittance(s.sigma_t, r_ij), tr_jk = transmittance(s.sigma_t, r_jk);
+  const FloatBatch flight_ij = mean3(free_flight_channel_pdfs(s.sigma_t, tr_ij));
+  const FloatBatch flight_jk = mean3(free_flight_channel_pdfs(s.sigma_t, tr_jk));
+  const FloatBatch survival_jk = mean3(tr_jk);
+  const FloatBatch walk = phase_i * flight_ij / r_ij2 * (phase_j * survival_jk * cos_k_j / r_jk2);
+
+  // The interface at x_k: one generalised half vector serves both transmission directions.
+  const BoolBatch delta = s.interface.delta();
+  const FloatBatch eta = s.interface.eta;
+  const TransmissionPair btdf = transmission_pair(s.interface, local_kj, local_o);
+  const Vec3Batch& h = btdf.h;
+  const FloatBatch btdf_inward = btdf.inward, btdf_outward = btdf.outward;
+  // The tracer's BSDF at x_k: value and pdf of the rough transmission, or the smooth lobe's
+  // transmission probability.
+  const Lobe rough = rough_transmission(s.interface, local_kj, local_o, h);
+  const BoolBatch rough_ok = rough.ok && h.z > zero;
+  const FloatBatch fresnel_o = fresnel_dielectric(cos_o, eta);
+  const FloatBatch smooth_transmit = one - fresnel_dielectric(cos_k_j, one / eta);
+  const FloatBatch exit_bsdf =
+      xsimd::select(delta, smooth_transmit, xsimd::select(rough_ok, rough.pdf, zero));
+
+  // Top-to-bottom: probe, light, inward refraction (or its Jacobian), distance along it.
+  const FloatBatch distance =
+      FloatBatch(options.c_exponential > 0 ? options.c_exponential : 0.0f) * flight_jk +
+      FloatBatch(options.c_exponential < 1 ? 1.0f - options.c_exponential : 0.0f) *
+          equiangular_pdf(s.x_k, negate(omega_jk), s.x_i, r_jk);
+  const FloatBatch refraction = xsimd::select(
+      delta, xsimd::select(s.light_delta, r_jk2, eta * eta * cos_k_j / cos_o), btdf_inward);
+  const FloatBatch top_to_bottom = probe * s.light_pdf * refraction * distance / r_jk2;
+
+  // Bottom-to-top: probe, joint-importance placement of x_j, outward refraction.
+  const FloatBatch sin_gamma =
+      xsimd::sqrt(dot(cross(omega_ij, omega_ik), cross(omega_ij, omega_ik)));
+  const FloatBatch pi_minus_gamma = xsimd::atan2(sin_gamma, -dot(omega_ij, omega_ik));
+  const FloatBatch geometric = xsimd::select(s.g == zero, one, FloatBatch(options.c_joint));
+  const FloatBatch inv_pi3(
+      static_cast<float>(1.0 / (std::numbers::pi * std::numbers::pi * std::numbers::pi)));
+  const FloatBatch placement =
+      (geometric * d * inv_pi3 +
+       xsimd::select(geometric < one,
+                     (one - geometric) * hg_phase(dot(s.omega_in, omega_ij), s.g) * d * sin_gamma /
+                         pi_minus_gamma,
+                     zero)) /
+      (r_jk2 * r_ij2);
+  const BoolBatch placed = sin_gamma > zero && pi_minus_gamma > zero;
+  const FloatBatch bottom_to_top =
+      xsimd::select(placed && !s.light_delta && s.light_distant,
+                    probe * placement * xsimd::select(delta, one, btdf_outward), zero);
+
+  SuffixWeighing out;
+  const auto set = [&](Strategy st, FloatBatch p) {
+    out.pdf[static_cast<int>(st)] = xsimd::select(exits, p, zero);
+  };
+  set(Strategy::kTopToBottom, top_to_bottom);
+  set(Strategy::kBottomToTop, bottom_to_top);
+  set(Strategy::kUnidirectionalBsdf, xsimd::select(s.light_delta, zero, walk * exit_bsdf));
+  set(Strategy::kUnidirectionalLight, xsimd::select(delta, zero, walk * s.light_pdf));
+
+  // The integrand (suffix_integrand) per unit of emitted radiance.
+  const FloatBatch first_segment = phase_i * phase_j / r_ij2;
+  const FloatBatch second_segment = cos_k_j / r_jk2;
+  const FloatBatch exit_factor =
+      xsimd::select(delta,
+                    xsimd::select(s.light_delta, (one - fresnel_o) * cos_o,
+                                  second_segment * eta * eta * (one - fresnel_o)),
+                    second_segment * xsimd::select(rough_ok, rough.f, zero) * cos_o);
+  out.attenuation = mul(mul(s.sigma_s, tr_ij), tr_jk);
+  out.path = xsimd::select(exits, first_segment * exit_factor, zero);
+  return out;
+}
+
+// mis_weight (snee/snee_pdfs.cpp) of strategy st over the enabled strategies, from densities
+// scaled by the largest one.
+inline FloatBatch mis_weight(Strategy st, const SuffixWeighing& w, const SneeOptions& options) {
+  const FloatBatch zero(0.0f);
+  if (!options.enabled.contains(st)) return zero;
+  FloatBatch largest = zero;
+  for (int t = 0; t < kStrategyCount; ++t) {
+    if (options.enabled.contains(static_cast<Strategy>(t))) largest = xsimd::max(largest, w.pdf[t]);
+  }
+  const auto heuristic = [&](FloatBatch p) {
+    const FloatBatch r = p / largest;
+    return options.heuristic == MisHeuristic::kPower ? r * r : r;
+  };
+  FloatBatch sum = zero;
+  for (int t = 0; t < kStrategyCount; ++t) {
+    if (options.enabled.contains(static_cast<Strategy>(t))) sum += heuristic(w.pdf[t]);
+  }
+  const FloatBatch own = w.pdf[static_cast<int>(st)];
+  return xsimd::select(own > zero, heuristic(own) / sum, zero);
+}
+
+// Fills a batch from suffix_of(l), the suffix of lane l, for lanes [0, count); the padding
+// lanes repeat lane 0.
+template <class SuffixOf>
+SuffixBatch load_suffixes(SuffixOf&& suffix_of, size_t count) {
+  constexpr int kVectors = 8, kFields = 3 * kVectors + 6;
+  alignas(64) float f[kFields][kLanes];
+  for (size_t l = 0; l < kLanes; ++l) {
+    const SneeSuffix& s = suffix_of(l < count ? l : 0);
+    const Vec3 v[kVectors] = {s.x_i,     s.omega_in,       s.x_j,           s.x_k, s.n_k,
+                              s.omega_o, s.medium.sigma_s, s.medium.sigma_t};
+    for (int i = 0; i < kVectors; ++i) {
+      f[3 * i][l] = v[i].x;
+      f[3 * i + 1][l] = v[i].y;
+      f[3 * i + 2][l] = v[i].z;
+    }
+    const float scalars[] = {s.medium.g,
+                             s.interface.eta,
+                             s.interface.alpha,
+                             s.light_pdf,
+                             s.light_delta ? 1.0f : 0.0f,
+                             s.light_distant ? 1.0f : 0.0f};
+    for (int i = 0; i < 6; ++i) f[3 * kVectors + i][l] = scalars[i];
+  }
+  const auto batch = [&](int i) { return FloatBatch::load_aligned(f[i]); };
+  const auto vec = [&](int i) {
+    return Vec3Batch{batch(3 * i), batch(3 * i + 1), batch(3 * i + 2)};
+  };
+  const auto flag = [&](int i) { return batch(i) != FloatBatch(0.0f); };
+  return {vec(0),    vec(1),   vec(2),  vec(3),    vec(4),
+          vec(5),    vec(6),   vec(7),  batch(24), {batch(25), batch(26)},
+          batch(27), flag(28), flag(29)};
+}
+
+// What finish_proposal computes, for a batch of proposals: the MIS weight of each lane's own
+// strategy and the contribution w_s F / p_s. `in_range` is false where a density or the
+// integrand left float's range; such a lane must be weighed by finish_proposal.
+struct ProposalWeights {
+  float weight[kLanes];
+  Rgb contribution[kLanes];
+  bool in_range[kLanes];
+};
+
+// proposal_of(l) returns lane l's proposal and strategy (top-to-bottom or bottom-to-top), for
+// lanes [0, count), 1 <= count <= kLanes.
+template <class ProposalOf>
+ProposalWeights weigh_proposals(ProposalOf&& proposal_of, size_t count,
+                                const SneeOptions& options) {
+  const SuffixWeighing w = weigh_suffix(
+      load_suffixes([&](size_t l) -> const SneeSuffix& { return proposal_of(l).first.suffix; },
+                    count),
+      options);
+  alignas(64) float weight[2][kLanes], attenuation[3][kLanes], path[kLanes], pdf_sum[kLanes];
+  mis_weight(Strategy::kTopToBottom, w, options).store_aligned(weight[0]);
+  mis_weight(Strategy::kBottomToTop, w, options).store_aligned(weight[1]);
+  w.attenuation.x.store_aligned(attenuation[0]);
+  w.attenuation.y.store_aligned(attenuation[1]);
+  w.attenuation.z.store_aligned(attenuation[2]);
+  w.path.store_aligned(path);
+  (w.pdf[0] + w.pdf[1] + w.pdf[2] + w.pdf[3]).store_aligned(pdf_sum);
+  ProposalWeights out;
+  for (size_t l = 0; l < count; ++l) {
+    const auto [p, st] = proposal_of(l);
+    const float wl = weight[st == Strategy::kTopToBottom ? 0 : 1][l];
+    const Rgb f =
+        Rgb(attenuation[0][l], attenuation[1][l], attenuation[2][l]) * p.emitted * path[l];
+    out.weight[l] = wl;
+    out.contribution[l] = f * static_cast<float>(wl / p.sampling_pdf);
+    out.in_range[l] = std::isfinite(pdf_sum[l]) && std::isfinite(wl) && std::isfinite(path[l]);
+  }
+  return out;
+}
+
+}  // namespace snee::simd
