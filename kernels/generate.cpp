@@ -17,9 +17,7 @@ StageQueues::StageQueues(size_t slots)
       retire(slots),
       flights(slots),
       surfaces(slots),
-      snee_randoms(slots),
-      snee_bottom_to_top(slots),
-      snee_proposals(slots),
+      subdivision(slots),
       rays(slots),
       shadow(slots * 8) {}
 

@@ -29,6 +29,8 @@ const char* batched_kernel_name(BatchedKernel k) {
       return "snee_probe";
     case BatchedKernel::kSubdivisionDraws:
       return "subdivision";
+    case BatchedKernel::kSubdivisionSamples:
+      return "subdivision_samples";
     case BatchedKernel::kSubdivisionWeights:
       return "subdivision_weights";
     case BatchedKernel::kCount:

@@ -49,12 +49,14 @@ enum class BatchedKernel : int {
   kSurfaceSamples,
   kProbeDirections,
   kSubdivisionDraws,
+  kSubdivisionSamples,
   kSubdivisionWeights,
   kCount
 };
 inline constexpr int kBatchedKernels = static_cast<int>(BatchedKernel::kCount);
 // The stage's name: "generate", "medium_event", "shade_surface", "snee_probe", "subdivision";
-// subdivision's second pass, which weighs its proposals, is "subdivision_weights".
+// subdivision's later passes, which sample the strategies and weigh their proposals, are
+// "subdivision_samples" and "subdivision_weights".
 const char* batched_kernel_name(BatchedKernel k);
 
 // Lanes that held a queued slot, and lanes computed (a short chunk still runs at full width).

@@ -134,31 +134,6 @@ struct SurfaceResults {
   AlignedArray<uint32_t> flags;
 };
 
-// The random numbers subdivision draws for each exit of its queue, by queue position: for each
-// of the two strategies two Philox blocks of four numbers (drawn in SIMD chunks, used per exit).
-struct SubdivisionRandoms {
-  static constexpr int kBlocks = 4;  // top-to-bottom: 2, bottom-to-top: 2
-  explicit SubdivisionRandoms(size_t capacity) {
-    for (AlignedArray<float>& a : u) a = AlignedArray<float>(padded_capacity(capacity));
-  }
-  // u[4 b + j]: number j of block b at each queue position.
-  std::array<AlignedArray<float>, 4 * kBlocks> u;
-};
-
-// What subdivision's batched part computed for bottom-to-top at each exit of its queue: the
-// placed middle vertex, the sampled outward direction, the sampling density without the light,
-// and how far it got (kBottomToTop*).
-inline constexpr uint32_t kBottomToTopSampled = 0, kBottomToTopNotPlaced = 1,
-                          kBottomToTopNotRefracted = 2;
-struct BottomToTopResults {
-  explicit BottomToTopResults(size_t capacity) : status(padded_capacity(capacity)) {
-    for (AlignedArray<float>* a : {&x, &y, &z, &wx, &wy, &wz, &pdf})
-      *a = AlignedArray<float>(padded_capacity(capacity));
-  }
-  AlignedArray<float> x, y, z, wx, wy, wz, pdf;
-  AlignedArray<uint32_t> status;
-};
-
 // Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.
 class RayBatch {
  public:

@@ -6,38 +6,24 @@
 #include "kernels/kernel_context.h"
 #include "kernels/path_state.h"
 #include "kernels/queues.h"
-#include "kernels/snee/snee_strategies.h"
+#include "kernels/subdivision_scratch.h"
 
 namespace snee {
-
-// Subdivision's proposals that sampled something, in exit order, waiting for the batched
-// weighing. Reserved for two per slot (one per strategy), so filling never allocates.
-struct ProposalQueue {
-  explicit ProposalQueue(size_t slots) { entries.reserve(2 * slots); }
-  struct Entry {
-    SneeProposal proposal;
-    Strategy strategy;
-    uint32_t slot;
-  };
-  std::vector<Entry> entries;
-};
 
 // The queues one work unit cycles through.
 struct StageQueues {
   explicit StageQueues(size_t slots);
-  SlotQueue extend;                 // rays to trace
-  SlotQueue medium;                 // traced rays travelling inside a medium
-  SlotQueue surface;                // rays that reached a surface
-  SlotQueue escaped;                // rays that left the scene
-  SlotQueue probe;                  // SNEE: medium vertices waiting for an exit-point probe
-  ExitPointQueue subdivide;         // SNEE: probes that found the medium's exit, waiting for x_j
-  SlotQueue retire;                 // finished paths
-  FlightResults flights;            // scratch of medium_event's batched part
-  SurfaceResults surfaces;          // scratch of shade_surface's batched part
-  SubdivisionRandoms snee_randoms;  // scratch of subdivision's batched draws
-  BottomToTopResults snee_bottom_to_top;  // scratch of subdivision's batched BT placement
-  ProposalQueue snee_proposals;           // scratch of subdivision: proposals waiting to be weighed
-  RayBatch rays;                          // scratch for batched Embree queries
+  SlotQueue extend;                // rays to trace
+  SlotQueue medium;                // traced rays travelling inside a medium
+  SlotQueue surface;               // rays that reached a surface
+  SlotQueue escaped;               // rays that left the scene
+  SlotQueue probe;                 // SNEE: medium vertices waiting for an exit-point probe
+  ExitPointQueue subdivide;        // SNEE: probes that found the medium's exit, waiting for x_j
+  SlotQueue retire;                // finished paths
+  FlightResults flights;           // scratch of medium_event's batched part
+  SurfaceResults surfaces;         // scratch of shade_surface's batched part
+  SubdivisionScratch subdivision;  // scratch of the subdivision stage's passes
+  RayBatch rays;                   // scratch for batched Embree queries
   ShadowQueue shadow;
 };
 

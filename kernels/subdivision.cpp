@@ -8,6 +8,7 @@
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/slot_chunk.h"
 #include "kernels/simd/snee_weights_batch.h"
+#include "kernels/simd/top_to_bottom_batch.h"
 #include "kernels/snee/snee_strategies.h"
 #include "kernels/stages.h"
 
@@ -34,11 +35,15 @@ void draw_chunk(const KernelContext& ctx, const PathState& state, const simd::Sl
   }
 }
 
-// Bottom-to-top up to the light lookup for the exits at queue positions [k, k + count), from
-// the random numbers draw_chunk stored there.
-void place_bottom_to_top(const KernelContext& ctx, const PathState& state,
-                         const ExitPointQueue& exits, const simd::SlotChunk& chunk,
-                         const SubdivisionRandoms& randoms, BottomToTopResults& out, size_t k) {
+// What both strategies' batched parts read at the exits of one chunk.
+struct ChunkExits {
+  simd::Vec3Batch x_i, omega_in, x_k, n_k;
+  MediumLanes medium;
+  simd::DielectricLanes interface;
+};
+
+ChunkExits load_exits(const KernelContext& ctx, const PathState& state, const ExitPointQueue& exits,
+                      const simd::SlotChunk& chunk, size_t k) {
   using simd::FloatBatch;
   const size_t count = chunk.count();
   const auto exit_vector = [&](const float* (ExitPointQueue::*component)(int) const) {
@@ -52,31 +57,93 @@ void place_bottom_to_top(const KernelContext& ctx, const PathState& state,
     eta[l] = p.eta;
     alpha[l] = p.alpha;
   }
-  const simd::BottomToTopExits e{
-      {chunk.load(state.xj_x), chunk.load(state.xj_y), chunk.load(state.xj_z)},
-      {chunk.load(state.wjn_x), chunk.load(state.wjn_y), chunk.load(state.wjn_z)},
-      exit_vector(&ExitPointQueue::x_k_component),
-      exit_vector(&ExitPointQueue::n_k_component),
-      load_media(ctx, state, chunk).g,
-      {FloatBatch::load_aligned(eta), FloatBatch::load_aligned(alpha)}};
-  std::array<FloatBatch, kBottomToTopDimensions> u;
-  for (int n = 0; n < kBottomToTopDimensions; ++n)
-    u[static_cast<size_t>(n)] = FloatBatch::load_aligned(randoms.u[8 + n].data() + k);
-  const simd::BottomToTopBatch bt = simd::propose_bottom_to_top(e, ctx.snee, u, count);
-  bt.x_j.x.store_aligned(out.x.data() + k);
-  bt.x_j.y.store_aligned(out.y.data() + k);
-  bt.x_j.z.store_aligned(out.z.data() + k);
-  bt.omega_o.x.store_aligned(out.wx.data() + k);
-  bt.omega_o.y.store_aligned(out.wy.data() + k);
-  bt.omega_o.z.store_aligned(out.wz.data() + k);
+  return {{chunk.load(state.xj_x), chunk.load(state.xj_y), chunk.load(state.xj_z)},
+          {chunk.load(state.wjn_x), chunk.load(state.wjn_y), chunk.load(state.wjn_z)},
+          exit_vector(&ExitPointQueue::x_k_component),
+          exit_vector(&ExitPointQueue::n_k_component),
+          load_media(ctx, state, chunk),
+          {FloatBatch::load_aligned(eta), FloatBatch::load_aligned(alpha)}};
+}
+
+// The status of an exit in StrategyResults, from the batched part's success flags.
+void store_status(simd::BoolBatch first, simd::BoolBatch second, uint32_t first_failure,
+                  uint32_t second_failure, uint32_t* out) {
+  using simd::FloatBatch;
+  const FloatBatch status = xsimd::select(
+      first, xsimd::select(second, FloatBatch(kSneeSampled), FloatBatch(second_failure)),
+      FloatBatch(first_failure));
+  xsimd::bitwise_cast<simd::UintBatch>(xsimd::batch_cast<int32_t>(status)).store_aligned(out);
+}
+
+void store_vector(const simd::Vec3Batch& v, float* x, float* y, float* z) {
+  v.x.store_aligned(x);
+  v.y.store_aligned(y);
+  v.z.store_aligned(z);
+}
+
+// Top-to-bottom after the light sample, for the exits at queue positions [k, k + count).
+void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
+                                const SubdivisionScratch& scratch, StrategyResults& out,
+                                size_t count, size_t k) {
+  using simd::FloatBatch;
+  const TopToBottomLights& lights = scratch.lights;
+  // The light arrays are written per exit, so a short chunk's padding lanes repeat its first.
+  const auto at = [&](const AlignedArray<float>& a) {
+    return simd::load_padded(a.data() + k, count);
+  };
+  std::array<FloatBatch, 5> u;
+  for (size_t n = 0; n < u.size(); ++n)
+    u[n] = FloatBatch::load_aligned(scratch.randoms.u[3 + n].data() + k);
+  const simd::TopToBottomBatch tb =
+      simd::propose_top_to_bottom({e.x_i,
+                                   e.omega_in,
+                                   e.x_k,
+                                   e.n_k,
+                                   e.medium.g,
+                                   e.medium.sigma_t,
+                                   e.interface,
+                                   {at(lights.wx), at(lights.wy), at(lights.wz)},
+                                   at(lights.pdf),
+                                   at(lights.delta) != FloatBatch(0.0f)},
+                                  ctx.snee, u, count);
+  store_vector(tb.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
+  tb.pdf.store_aligned(out.pdf.data() + k);
+  store_status(tb.refracted, tb.distanced, kSneeNotRefracted, kSneeNoDistance,
+               out.status.data() + k);
+}
+
+// Bottom-to-top up to the light lookup, for the exits at queue positions [k, k + count).
+void sample_bottom_to_top_chunk(const KernelContext& ctx, const ChunkExits& e,
+                                const SubdivisionRandoms& randoms, StrategyResults& out,
+                                size_t count, size_t k) {
+  std::array<simd::FloatBatch, kBottomToTopDimensions> u;
+  for (size_t n = 0; n < u.size(); ++n)
+    u[n] = simd::FloatBatch::load_aligned(randoms.u[8 + n].data() + k);
+  const simd::BottomToTopBatch bt = simd::propose_bottom_to_top(
+      {e.x_i, e.omega_in, e.x_k, e.n_k, e.medium.g, e.interface}, ctx.snee, u, count);
+  store_vector(bt.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
+  store_vector(bt.omega_o, out.wx.data() + k, out.wy.data() + k, out.wz.data() + k);
   bt.pdf.store_aligned(out.pdf.data() + k);
-  const FloatBatch status =
-      xsimd::select(bt.placed,
-                    xsimd::select(bt.refracted, FloatBatch(kBottomToTopSampled),
-                                  FloatBatch(kBottomToTopNotRefracted)),
-                    FloatBatch(kBottomToTopNotPlaced));
-  xsimd::bitwise_cast<simd::UintBatch>(xsimd::batch_cast<int32_t>(status))
-      .store_aligned(out.status.data() + k);
+  store_status(bt.placed, bt.refracted, kSneeNotPlaced, kSneeNotRefracted, out.status.data() + k);
+}
+
+// Top-to-bottom's light samples, one exit at a time (the light table branches on the kind of
+// light), with whether each direction is usable: a light above x_k's horizon.
+void sample_lights(const KernelContext& ctx, const ExitPointQueue& exits,
+                   const SubdivisionRandoms& randoms, TopToBottomLights& out) {
+  for (size_t i = 0; i < exits.size(); ++i) {
+    const LightSample light =
+        ctx.lights->sample(exits.x_k(i), randoms.u[0][i], Vec2{randoms.u[1][i], randoms.u[2][i]});
+    const bool lit = light.valid && light.pdf > 0 && !is_black(light.radiance) &&
+                     dot(exits.n_k(i), light.wi) > 0;
+    out.samples[i] = light;
+    out.wx[i] = light.wi.x;
+    out.wy[i] = light.wi.y;
+    out.wz[i] = light.wi.z;
+    out.pdf[i] = light.pdf;
+    out.delta[i] = light.delta ? 1.0f : 0.0f;
+    out.lit[i] = lit ? 1.0f : 0.0f;
+  }
 }
 
 void count_failure(SneeFailure why, Strategy st, KernelCounters& counters) {
@@ -159,17 +226,26 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
   // Bottom-to-top finds only lights seen by escaped rays; without any it cannot succeed.
   const bool bottom_to_top =
       ctx.snee.enabled.contains(Strategy::kBottomToTop) && ctx.lights->has_escaped_lights();
-  SubdivisionRandoms& randoms = q.snee_randoms;
+  SubdivisionScratch& scratch = q.subdivision;
   for_each_chunk(exits.slots(), exits.size(), BatchedKernel::kSubdivisionDraws, counters,
                  [&](const simd::SlotChunk& chunk, size_t k) {
-                   draw_chunk(ctx, state, chunk, bottom_to_top, randoms, k);
+                   draw_chunk(ctx, state, chunk, bottom_to_top, scratch.randoms, k);
+                 });
+  if (top_to_bottom) sample_lights(ctx, exits, scratch.randoms, scratch.lights);
+  for_each_chunk(exits.slots(), exits.size(), BatchedKernel::kSubdivisionSamples, counters,
+                 [&](const simd::SlotChunk& chunk, size_t k) {
+                   const ChunkExits e = load_exits(ctx, state, exits, chunk, k);
+                   if (top_to_bottom) {
+                     sample_top_to_bottom_chunk(ctx, e, scratch, scratch.top_to_bottom,
+                                                chunk.count(), k);
+                   }
                    if (bottom_to_top) {
-                     place_bottom_to_top(ctx, state, exits, chunk, randoms, q.snee_bottom_to_top,
-                                         k);
+                     sample_bottom_to_top_chunk(ctx, e, scratch.randoms, scratch.bottom_to_top,
+                                                chunk.count(), k);
                    }
                  });
-  const auto u = [&](int n, size_t i) { return randoms.u[n][i]; };
-  ProposalQueue& proposals = q.snee_proposals;
+
+  ProposalQueue& proposals = scratch.proposals;
   proposals.entries.clear();
   const auto propose = [&](const SneeProposal& p, Strategy st, uint32_t slot) {
     if (p.failure == SneeFailure::kNone && p.sampling_pdf > 0 && std::isfinite(p.sampling_pdf)) {
@@ -178,6 +254,11 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
       count_failure(p.failure == SneeFailure::kNone ? SneeFailure::kZero : p.failure, st, counters);
     }
   };
+  const auto failure_of = [](uint32_t status) {
+    return status == kSneeNotPlaced      ? SneeFailure::kPlacement
+           : status == kSneeNotRefracted ? SneeFailure::kRefraction
+                                         : SneeFailure::kZero;
+  };
   for (size_t i = 0; i < exits.size(); ++i) {
     const uint32_t s = exits.slot(i);
     const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
@@ -185,17 +266,21 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
     const SneeOrigin origin{state.vertex_j(s), state.direction_in_j(s)};
     const ExitPoint exit{exits.x_k(i), exits.n_k(i), ctx.surfaces[exits.geom(i)].dielectric};
     if (top_to_bottom) {
-      const std::array<float, kTopToBottomDimensions> tb = {u(0, i), u(1, i), u(2, i), u(3, i),
-                                                            u(4, i), u(5, i), u(6, i), u(7, i)};
-      propose(propose_top_to_bottom(origin, medium, exit, *ctx.lights, ctx.snee, ctx.epsilon, tb),
-              Strategy::kTopToBottom, s);
+      const StrategyResults& tb = scratch.top_to_bottom;
+      if (scratch.lights.lit[i] == 0) {
+        count_failure(SneeFailure::kNoLight, Strategy::kTopToBottom, counters);
+      } else if (tb.status[i] != kSneeSampled) {
+        count_failure(failure_of(tb.status[i]), Strategy::kTopToBottom, counters);
+      } else {
+        propose(top_to_bottom_proposal(origin, medium, exit, scratch.lights.samples[i], ctx.epsilon,
+                                       {tb.x[i], tb.y[i], tb.z[i]}, tb.pdf[i]),
+                Strategy::kTopToBottom, s);
+      }
     }
     if (bottom_to_top) {
-      const BottomToTopResults& bt = q.snee_bottom_to_top;
-      if (bt.status[i] == kBottomToTopNotPlaced) {
-        count_failure(SneeFailure::kPlacement, Strategy::kBottomToTop, counters);
-      } else if (bt.status[i] == kBottomToTopNotRefracted) {
-        count_failure(SneeFailure::kRefraction, Strategy::kBottomToTop, counters);
+      const StrategyResults& bt = scratch.bottom_to_top;
+      if (bt.status[i] != kSneeSampled) {
+        count_failure(failure_of(bt.status[i]), Strategy::kBottomToTop, counters);
       } else {
         propose(bottom_to_top_proposal(origin, medium, exit, *ctx.lights, ctx.epsilon,
                                        {bt.x[i], bt.y[i], bt.z[i]}, {bt.wx[i], bt.wy[i], bt.wz[i]},

@@ -14,6 +14,7 @@
 #include "kernels/lights/light_table.h"
 #include "kernels/simd/bottom_to_top_batch.h"
 #include "kernels/simd/snee_weights_batch.h"
+#include "kernels/simd/top_to_bottom_batch.h"
 #include "kernels/snee/snee_strategies.h"
 #include "tests/support/chi2.h"
 #include "tests/support/snee_setups.h"
@@ -237,21 +238,63 @@ TEST(SneeWeightsBatch, FlagsLanesBeyondFloatRange) {
   EXPECT_TRUE(std::isfinite(scalar.weight));
 }
 
-// --- bottom-to-top placement ---------------------------------------------------------------
+// --- the strategies' batched sampling ---------------------------------------------------------
 
-simd::FloatBatch broadcast_lanes(const float* v) {
-  return simd::FloatBatch::load_unaligned(v);
+// One lane's result: how far the sampler got (its failure stages in order, then success), and
+// what it sampled.
+struct LaneSample {
+  int stage = 0;
+  Vec3 x_j, omega_o;
+  double pdf = 0;
+};
+
+struct SamplerLanes {
+  std::array<ExitSetup, simd::kLanes> setups;
+  alignas(64) float x_i[3][simd::kLanes], omega_in[3][simd::kLanes], x_k[3][simd::kLanes],
+      n_k[3][simd::kLanes], g[simd::kLanes], eta[simd::kLanes], alpha[simd::kLanes];
+  simd::Vec3Batch vec(const float (&v)[3][simd::kLanes]) const {
+    return {simd::FloatBatch::load_aligned(v[0]), simd::FloatBatch::load_aligned(v[1]),
+            simd::FloatBatch::load_aligned(v[2])};
+  }
+  simd::DielectricLanes interface() const {
+    return {simd::FloatBatch::load_aligned(eta), simd::FloatBatch::load_aligned(alpha)};
+  }
+};
+
+std::array<LaneSample, simd::kLanes> read_lanes(const simd::Vec3Batch& x_j,
+                                                const simd::Vec3Batch& omega_o,
+                                                simd::FloatBatch pdf,
+                                                const std::array<simd::BoolBatch, 2>& passed) {
+  alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], p[simd::kLanes], ok[2][simd::kLanes];
+  const simd::FloatBatch one(1.0f), zero(0.0f);
+  for (int i = 0; i < 2; ++i) xsimd::select(passed[i], one, zero).store_aligned(ok[i]);
+  for (int i = 0; i < 3; ++i) {
+    (i == 0 ? x_j.x : i == 1 ? x_j.y : x_j.z).store_aligned(x[i]);
+    (i == 0 ? omega_o.x : i == 1 ? omega_o.y : omega_o.z).store_aligned(w[i]);
+  }
+  pdf.store_aligned(p);
+  std::array<LaneSample, simd::kLanes> out;
+  for (size_t l = 0; l < simd::kLanes; ++l) {
+    out[l].stage = ok[0][l] == 0 ? 0 : ok[1][l] == 0 ? 1 : 2;
+    out[l].x_j = Vec3(x[0][l], x[1][l], x[2][l]);
+    out[l].omega_o = Vec3(w[0][l], w[1][l], w[2][l]);
+    out[l].pdf = p[l];
+  }
+  return out;
 }
 
-// The batch decides like the scalar sampler (placed, refracted, or neither) on all but a few
-// lanes on the boundary of a decision, and where both sample, x_j, omega_o and the density
-// agree to float rounding amplified by the configuration's conditioning.
-TEST(SneeBottomToTopBatch, AgreesWithScalarSampler) {
-  TestRng rng(74);
+// Runs batch(lanes, u, medium, options, lights) and scalar(setup, u, medium, options, lights),
+// which returns the stage the scalar sampler reached and its proposal, on the same exits and random
+// numbers for every case, medium and probe kind; the batch must decide like the scalar sampler on
+// all but a few lanes at the edge of a decision, and where both sample, x_j, omega_o and the
+// density agree within the stated bounds.
+template <int N, class Batch, class Scalar>
+void compare_sampler(uint64_t seed, bool delta_lights, Batch&& batch, Scalar&& scalar) {
+  TestRng rng(seed);
   int lanes = 0, decisions_differ = 0, sampled = 0;
   double position_error = 0, direction_error = 0, pdf_error = 0, well_conditioned_pdf_error = 0;
   for (const test::SneeCase& c : kCases) {
-    if (c.light == LightKind::kDirectional) continue;  // BT never reaches a delta light
+    if (!delta_lights && c.light == LightKind::kDirectional) continue;
     const Scene scene = light_scene(c.light, Rgb(1.0f, 0.7f, 0.4f));
     const LightTable lights(scene);
     for (const float g : {0.0f, 0.8f}) {
@@ -261,79 +304,50 @@ TEST(SneeBottomToTopBatch, AgreesWithScalarSampler) {
         SneeOptions options;
         options.probe = g == 0 ? ProbeDirections::kUniformSphere : ProbeDirections::kPhaseFunction;
         for (int k = 0; k < 4000; ++k) {
-          alignas(64) float f[16 + kBottomToTopDimensions][simd::kLanes];
-          std::array<ExitSetup, simd::kLanes> setups;
-          std::array<std::array<float, kBottomToTopDimensions>, simd::kLanes> us;
+          SamplerLanes in;
+          std::array<std::array<float, N>, simd::kLanes> us;
           for (size_t l = 0; l < simd::kLanes; ++l) {
-            setups[l] = random_setup(rng, c.interface, 0.04f / density, 2.0f / density);
-            us[l] = uniforms<kBottomToTopDimensions>(rng);
-            const Vec3 v[4] = {setups[l].origin.x_i, setups[l].origin.omega_in, setups[l].exit.x_k,
-                               setups[l].exit.n_k};
+            const ExitSetup e = random_setup(rng, c.interface, 0.04f / density, 2.0f / density);
+            in.setups[l] = e;
+            us[l] = uniforms<N>(rng);
+            const Vec3 v[4] = {e.origin.x_i, e.origin.omega_in, e.exit.x_k, e.exit.n_k};
+            float(*dst[4])[simd::kLanes] = {in.x_i, in.omega_in, in.x_k, in.n_k};
             for (int i = 0; i < 4; ++i) {
-              f[3 * i][l] = v[i].x;
-              f[3 * i + 1][l] = v[i].y;
-              f[3 * i + 2][l] = v[i].z;
+              dst[i][0][l] = v[i].x;
+              dst[i][1][l] = v[i].y;
+              dst[i][2][l] = v[i].z;
             }
-            f[12][l] = g;
-            f[13][l] = c.interface.eta;
-            f[14][l] = c.interface.alpha;
-            for (int n = 0; n < kBottomToTopDimensions; ++n) f[16 + n][l] = us[l][n];
+            in.g[l] = g;
+            in.eta[l] = c.interface.eta;
+            in.alpha[l] = c.interface.alpha;
           }
-          const auto vec = [&](int i) {
-            return simd::Vec3Batch{broadcast_lanes(f[3 * i]), broadcast_lanes(f[3 * i + 1]),
-                                   broadcast_lanes(f[3 * i + 2])};
-          };
-          std::array<simd::FloatBatch, kBottomToTopDimensions> u;
-          for (int n = 0; n < kBottomToTopDimensions; ++n) u[n] = broadcast_lanes(f[16 + n]);
-          const simd::BottomToTopBatch b =
-              simd::propose_bottom_to_top({vec(0),
-                                           vec(1),
-                                           vec(2),
-                                           vec(3),
-                                           broadcast_lanes(f[12]),
-                                           {broadcast_lanes(f[13]), broadcast_lanes(f[14])}},
-                                          options, u, simd::kLanes);
-          alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], pdf[simd::kLanes];
-          alignas(64) float placed[simd::kLanes], refracted[simd::kLanes];
-          const simd::FloatBatch one(1.0f), zero(0.0f);
-          xsimd::select(b.placed, one, zero).store_aligned(placed);
-          xsimd::select(b.refracted, one, zero).store_aligned(refracted);
-          b.x_j.x.store_aligned(x[0]);
-          b.x_j.y.store_aligned(x[1]);
-          b.x_j.z.store_aligned(x[2]);
-          b.omega_o.x.store_aligned(w[0]);
-          b.omega_o.y.store_aligned(w[1]);
-          b.omega_o.z.store_aligned(w[2]);
-          b.pdf.store_aligned(pdf);
+          const std::array<LaneSample, simd::kLanes> got = batch(in, us, medium, options, lights);
           for (size_t l = 0; l < simd::kLanes; ++l) {
-            const SneeProposal p = propose_bottom_to_top(setups[l].origin, medium, setups[l].exit,
-                                                         lights, options, 1e-4f, us[l]);
-            const int scalar_stage = p.failure == SneeFailure::kPlacement    ? 0
-                                     : p.failure == SneeFailure::kRefraction ? 1
-                                                                             : 2;
-            const int batch_stage = placed[l] == 0 ? 0 : refracted[l] == 0 ? 1 : 2;
+            const auto [stage, p] = scalar(in.setups[l], us[l], medium, options, lights);
             ++lanes;
-            if (scalar_stage != batch_stage) {
+            const LaneSample& b = got[l];
+            if (b.stage != stage) {
               ++decisions_differ;
               continue;
             }
             if (p.failure != SneeFailure::kNone) continue;
             ++sampled;
             const SneeSuffix& s = p.suffix;
-            const Vec3 x_j(x[0][l], x[1][l], x[2][l]), omega_o(w[0][l], w[1][l], w[2][l]);
-            const double scale = std::max(length(s.x_j - s.x_i), 1.0f);
-            position_error = std::max(position_error, double(length(x_j - s.x_j)) / scale);
             const double conditioning = rounding_conditioning(s);
-            const double direction = length(omega_o - s.omega_o);
-            EXPECT_LE(direction, kContributionBound + kConditioningFactor * conditioning);
-            EXPECT_LE(length(x_j - s.x_j) / scale, kContributionBound);
-            direction_error = std::max(direction_error, direction);
-            const double e = std::fabs(pdf[l] - p.sampling_pdf) / p.sampling_pdf;
+            const double scale = std::max(length(s.x_j - s.x_i), 1.0f);
+            const double position = length(b.x_j - s.x_j) / scale;
+            const double direction = length(b.omega_o - s.omega_o);
+            const double e = std::fabs(b.pdf - p.sampling_pdf) / p.sampling_pdf;
+            EXPECT_LE(position, kContributionBound + kConditioningFactor * conditioning) << c.name;
+            EXPECT_LE(direction, kContributionBound + kConditioningFactor * conditioning) << c.name;
             EXPECT_LE(e, kContributionBound + kConditioningFactor * conditioning)
-                << c.name << ": " << pdf[l] << " vs " << p.sampling_pdf;
+                << c.name << ": " << b.pdf << " vs " << p.sampling_pdf;
+            position_error = std::max(position_error, position);
+            direction_error = std::max(direction_error, direction);
             pdf_error = std::max(pdf_error, e);
-            if (conditioning < 1e-6)
+            if (conditioning < 1e-6) {
               well_conditioned_pdf_error = std::max(well_conditioned_pdf_error, e);
+            }
           }
         }
       }
@@ -346,6 +360,90 @@ TEST(SneeBottomToTopBatch, AgreesWithScalarSampler) {
       well_conditioned_pdf_error);
   EXPECT_GT(sampled, 20000);
   EXPECT_LE(decisions_differ, lanes / 10000);
+}
+
+TEST(SneeBottomToTopBatch, AgreesWithScalarSampler) {
+  // Stages: not placed, not refracted, sampled (the light lookup is per exit, after the batch).
+  compare_sampler<kBottomToTopDimensions>(
+      74, false,
+      [](const SamplerLanes& in, const auto& us, const SneeMedium&, const SneeOptions& options,
+         const LightTable&) {
+        std::array<simd::FloatBatch, kBottomToTopDimensions> u;
+        for (int n = 0; n < kBottomToTopDimensions; ++n) {
+          alignas(64) float lane[simd::kLanes];
+          for (size_t l = 0; l < simd::kLanes; ++l) lane[l] = us[l][n];
+          u[n] = simd::FloatBatch::load_aligned(lane);
+        }
+        const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
+            {in.vec(in.x_i), in.vec(in.omega_in), in.vec(in.x_k), in.vec(in.n_k),
+             simd::FloatBatch::load_aligned(in.g), in.interface()},
+            options, u, simd::kLanes);
+        return read_lanes(b.x_j, b.omega_o, b.pdf, {b.placed, b.refracted});
+      },
+      [](const ExitSetup& e, const auto& u, const SneeMedium& medium, const SneeOptions& options,
+         const LightTable& lights) {
+        const SneeProposal p =
+            propose_bottom_to_top(e.origin, medium, e.exit, lights, options, 1e-4f, u);
+        const int stage = p.failure == SneeFailure::kPlacement    ? 0
+                          : p.failure == SneeFailure::kRefraction ? 1
+                                                                  : 2;
+        return std::pair<int, SneeProposal>(stage, p);
+      });
+}
+
+TEST(SneeTopToBottomBatch, AgreesWithScalarSampler) {
+  // Stages: no light, not refracted, no distance, sampled. The light sample is taken per lane
+  // first, as the subdivision stage does.
+  compare_sampler<kTopToBottomDimensions>(
+      75, true,
+      [](const SamplerLanes& in, const auto& us, const SneeMedium& medium,
+         const SneeOptions& options, const LightTable& lights) {
+        alignas(64) float u[5][simd::kLanes], wi[3][simd::kLanes], light_pdf[simd::kLanes],
+            light_delta[simd::kLanes];
+        std::array<bool, simd::kLanes> lit;
+        for (size_t l = 0; l < simd::kLanes; ++l) {
+          const LightSample light =
+              lights.sample(in.setups[l].exit.x_k, us[l][0], Vec2{us[l][1], us[l][2]});
+          lit[l] = light.valid && light.pdf > 0 && !is_black(light.radiance) &&
+                   dot(in.setups[l].exit.n_k, light.wi) > 0;
+          wi[0][l] = light.wi.x;
+          wi[1][l] = light.wi.y;
+          wi[2][l] = light.wi.z;
+          light_pdf[l] = light.pdf;
+          light_delta[l] = light.delta ? 1.0f : 0.0f;
+          for (int n = 0; n < 5; ++n) u[n][l] = us[l][3 + n];
+        }
+        std::array<simd::FloatBatch, 5> ub;
+        for (int n = 0; n < 5; ++n) ub[n] = simd::FloatBatch::load_aligned(u[n]);
+        const simd::FloatBatch zero(0.0f);
+        const simd::TopToBottomBatch b = simd::propose_top_to_bottom(
+            {in.vec(in.x_i),
+             in.vec(in.omega_in),
+             in.vec(in.x_k),
+             in.vec(in.n_k),
+             simd::FloatBatch::load_aligned(in.g),
+             {simd::FloatBatch(medium.sigma_t.x), simd::FloatBatch(medium.sigma_t.y),
+              simd::FloatBatch(medium.sigma_t.z)},
+             in.interface(),
+             in.vec(wi),
+             simd::FloatBatch::load_aligned(light_pdf),
+             simd::FloatBatch::load_aligned(light_delta) != zero},
+            options, ub, simd::kLanes);
+        std::array<LaneSample, simd::kLanes> out =
+            read_lanes(b.x_j, in.vec(wi), b.pdf, {b.refracted, b.distanced});
+        for (size_t l = 0; l < simd::kLanes; ++l) out[l].stage = lit[l] ? out[l].stage + 1 : 0;
+        return out;
+      },
+      [](const ExitSetup& e, const auto& u, const SneeMedium& medium, const SneeOptions& options,
+         const LightTable& lights) {
+        const SneeProposal p =
+            propose_top_to_bottom(e.origin, medium, e.exit, lights, options, 1e-4f, u);
+        const int stage = p.failure == SneeFailure::kNoLight      ? 0
+                          : p.failure == SneeFailure::kRefraction ? 1
+                          : p.failure == SneeFailure::kZero       ? 2
+                                                                  : 3;
+        return std::pair<int, SneeProposal>(stage, p);
+      });
 }
 
 }  // namespace

@@ -27,7 +27,6 @@ struct BottomToTopBatch {
 inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const SneeOptions& options,
                                               const std::array<FloatBatch, 6>& u,
                                               size_t active_lanes) {
-  using namespace dielectric_detail;
   const FloatBatch zero(0.0f), one(1.0f);
   const JointImportanceSampleBatch placed = joint_importance_sample(
       {e.x_i, e.omega_in, e.x_k, e.g, options.c_joint}, u[0], u[1], u[2], u[3]);
@@ -38,18 +37,13 @@ inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const S
   out.x_j = placed.x_j;
   out.placed = placed.valid && r_jk > zero && dot(e.n_k, omega_kj) < zero;
 
-  // Outward transmission through the macro normal (smooth) or a GGX normal (rough); the
-  // medium-side direction has local z < 0, so the normal is taken on that side.
+  // Outward transmission through the macro normal (smooth) or a GGX normal (rough).
   const FrameBatch frame = FrameBatch::from_normal(e.n_k);
   const Vec3Batch local_kj = frame.to_local(omega_kj);
   const BoolBatch delta = e.interface.delta();
-  const Vec3Batch macro{zero, zero, FloatBatch(-1.0f)};
-  const Vec3Batch micro = negate(ggx_sample_normal(u[4], u[5], e.interface.alpha, active_lanes));
-  const Vec3Batch m = select(delta, macro, micro);
-  BoolBatch refracts;
-  const Vec3Batch local_o = refract(local_kj, m, e.interface.eta, &refracts);
-  const BoolBatch sampled =
-      local_kj.z < zero && refracts && local_o.z > zero && (delta || dot(local_kj, m) > zero);
+  BoolBatch sampled;
+  const Vec3Batch local_o =
+      sample_transmission(e.interface, local_kj, u[4], u[5], active_lanes, &sampled);
   Vec3Batch omega_o = frame.to_world(local_o);
   omega_o = div(omega_o, xsimd::sqrt(dot(omega_o, omega_o)));
   out.omega_o = omega_o;

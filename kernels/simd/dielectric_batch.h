@@ -196,4 +196,24 @@ inline BsdfSampleBatch dielectric_sample(const DielectricLanes& p, const Vec3Bat
   return s;
 }
 
+// dielectric_sample_transmission (bsdf/dielectric.cpp): g on one side refracted to the other
+// through the macro normal (delta lanes) or a GGX normal facing g. `ok` is false where the
+// scalar function returns false.
+inline Vec3Batch sample_transmission(const DielectricLanes& p, const Vec3Batch& g, FloatBatch u0,
+                                     FloatBatch u1, size_t active_lanes, BoolBatch* ok) {
+  using namespace dielectric_detail;
+  const FloatBatch zero(0.0f), one(1.0f);
+  const BoolBatch outside = g.z > zero;
+  const BoolBatch delta = p.delta();
+  const Vec3Batch macro{zero, zero, xsimd::select(outside, one, FloatBatch(-1.0f))};
+  const Vec3Batch m = ggx_sample_normal(u0, u1, p.alpha, active_lanes);
+  const Vec3Batch normal = select(delta, macro, select(outside, m, negate(m)));
+  BoolBatch refracted;
+  const Vec3Batch s =
+      refract(g, normal, side_index(g.z, p.eta) / other_side_index(g.z, p.eta), &refracted);
+  *ok = !(g.z == zero) && refracted &&
+        select(delta, !(s.z == zero), dot(g, normal) > zero && s.z * g.z < zero);
+  return s;
+}
+
 }  // namespace snee::simd

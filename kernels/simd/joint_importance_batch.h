@@ -8,6 +8,7 @@
 // tests/test_snee_weights_batch.cpp and stated in README.md.
 #pragma once
 
+#include <limits>
 #include <numbers>
 
 #include "kernels/simd/hg_sample_batch.h"

@@ -44,4 +44,38 @@ inline TransmissionPair transmission_pair(const DielectricLanes& p, const Vec3Ba
           xsimd::select(ok, d_h * xsimd::abs(o_h), zero)};
 }
 
+// The ray o + t w seen from c (snee/distance_samplers.cpp): closest approach at t = delta, at
+// distance h, and the range of angles at c that t in [0, inf) sweeps, atan2(h, -delta) (the
+// scalar's pi/2 - theta_a, without the cancellation).
+struct EquiangularBatch {
+  FloatBatch delta, h, range;
+  EquiangularBatch(const Vec3Batch& o, const Vec3Batch& w, const Vec3Batch& c) {
+    const Vec3Batch v = sub(c, o);
+    delta = dot(v, w);
+    const Vec3Batch p = sub(v, scale(w, delta));
+    h = xsimd::sqrt(dot(p, p));
+    range = xsimd::atan2(h, -delta);
+  }
+  BoolBatch usable() const { return h > FloatBatch(0.0f) && range > FloatBatch(0.0f); }
+  // equiangular_pdf at t.
+  FloatBatch density(FloatBatch t) const {
+    const FloatBatch r = t - delta, zero(0.0f);
+    return xsimd::select(usable() && t >= zero, h / (range * (h * h + r * r)), zero);
+  }
+  // equiangular_sample's distance for u: the angle left to pi/2 is psi = (1 - u) range, and
+  // t = delta + h tan(pi/2 - psi) = delta + h cot(psi).
+  FloatBatch sample(FloatBatch u) const {
+    const auto [sin_psi, cos_psi] = xsimd::sincos((FloatBatch(1.0f) - u) * range);
+    return delta + h * cos_psi / sin_psi;
+  }
+};
+
+// distance_mixture_pdf: free flight with probability c_exponential, else equiangular;
+// flight is free_flight_pdf at the same distance.
+inline FloatBatch distance_mixture_pdf(float c_exponential, FloatBatch flight,
+                                       const EquiangularBatch& equiangular, FloatBatch t) {
+  return FloatBatch(c_exponential > 0 ? c_exponential : 0.0f) * flight +
+         FloatBatch(c_exponential < 1 ? 1.0f - c_exponential : 0.0f) * equiangular.density(t);
+}
+
 }  // namespace snee::simd

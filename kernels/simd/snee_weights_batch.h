@@ -51,20 +51,6 @@ inline FloatBatch mean3(const Vec3Batch& v) {
   return (v.x + v.y + v.z) * FloatBatch(1.0f / 3.0f);
 }
 
-// equiangular_pdf (snee/distance_samplers.cpp) of the ray o + t w seen from c, at t.
-inline FloatBatch equiangular_pdf(const Vec3Batch& o, const Vec3Batch& w, const Vec3Batch& c,
-                                  FloatBatch t) {
-  const Vec3Batch v = sub(c, o);
-  const FloatBatch delta = dot(v, w);
-  const Vec3Batch p = sub(v, scale(w, delta));
-  const FloatBatch h = xsimd::sqrt(dot(p, p));
-  const FloatBatch range = xsimd::atan2(h, -delta);
-  const FloatBatch r = t - delta;
-  const FloatBatch density = h / (range * (h * h + r * r));
-  const FloatBatch zero(0.0f);
-  return xsimd::select(h > zero && range > zero && t >= zero, density, zero);
-}
-
 }  // namespace snee_weights_detail
 
 inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& options) {
@@ -100,24 +86,20 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   const BoolBatch delta = s.interface.delta();
   const FloatBatch eta = s.interface.eta;
   const TransmissionPair btdf = transmission_pair(s.interface, local_kj, local_o);
-  const Vec3Batch& h = btdf.h;
-  const FloatBatch btdf_inward = btdf.inward, btdf_outward = btdf.outward;
   // The tracer's BSDF at x_k: value and pdf of the rough transmission, or the smooth lobe's
   // transmission probability.
-  const Lobe rough = rough_transmission(s.interface, local_kj, local_o, h);
-  const BoolBatch rough_ok = rough.ok && h.z > zero;
+  const Lobe rough = rough_transmission(s.interface, local_kj, local_o, btdf.h);
+  const BoolBatch rough_ok = rough.ok && btdf.h.z > zero;
   const FloatBatch fresnel_o = fresnel_dielectric(cos_o, eta);
   const FloatBatch smooth_transmit = one - fresnel_dielectric(cos_k_j, one / eta);
   const FloatBatch exit_bsdf =
       xsimd::select(delta, smooth_transmit, xsimd::select(rough_ok, rough.pdf, zero));
 
   // Top-to-bottom: probe, light, inward refraction (or its Jacobian), distance along it.
-  const FloatBatch distance =
-      FloatBatch(options.c_exponential > 0 ? options.c_exponential : 0.0f) * flight_jk +
-      FloatBatch(options.c_exponential < 1 ? 1.0f - options.c_exponential : 0.0f) *
-          equiangular_pdf(s.x_k, negate(omega_jk), s.x_i, r_jk);
+  const FloatBatch distance = distance_mixture_pdf(
+      options.c_exponential, flight_jk, EquiangularBatch(s.x_k, negate(omega_jk), s.x_i), r_jk);
   const FloatBatch refraction = xsimd::select(
-      delta, xsimd::select(s.light_delta, r_jk2, eta * eta * cos_k_j / cos_o), btdf_inward);
+      delta, xsimd::select(s.light_delta, r_jk2, eta * eta * cos_k_j / cos_o), btdf.inward);
   const FloatBatch top_to_bottom = probe * s.light_pdf * refraction * distance / r_jk2;
 
   // Bottom-to-top: probe, joint-importance placement of x_j, outward refraction.
@@ -137,7 +119,7 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   const BoolBatch placed = sin_gamma > zero && pi_minus_gamma > zero;
   const FloatBatch bottom_to_top =
       xsimd::select(placed && !s.light_delta && s.light_distant,
-                    probe * placement * xsimd::select(delta, one, btdf_outward), zero);
+                    probe * placement * xsimd::select(delta, one, btdf.outward), zero);
 
   SuffixWeighing out;
   const auto set = [&](Strategy st, FloatBatch p) {

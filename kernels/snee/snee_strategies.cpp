@@ -87,28 +87,33 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
   if (!distance.valid || !(distance.t > 0)) return failed_proposal(SneeFailure::kZero);
   const Vec3 x_j = exit.x_k + distance.t * omega_kj;
 
-  SneeSuffix s = make_suffix(origin, medium, exit, x_j, light.wi, light.pdf, light.delta);
-  s.light_distant = std::isinf(light.distance);
-  // Density of what was just sampled, in the suffix's measure (see top_to_bottom_pdf).
+  // Density of what was just sampled, in the suffix's measure (see top_to_bottom_pdf): the
+  // inward direction's solid angle at x_k becomes x_j's volume by 1 / t^2, except with a smooth
+  // interface and a delta light (case D), whose measure is the distance along the ray.
   const double t = distance.t;
-  double pdf = probe_pdf(s, options) * light.pdf * distance.pdf;
-  switch (suffix_measure(s)) {
-    case SuffixMeasure::kFull:
-    case SuffixMeasure::kDeltaLight:
-      pdf *= dielectric_transmission_pdf(exit.interface, local_o, local_kj) / (t * t);
-      break;
-    case SuffixMeasure::kDeltaInterface: {
-      const double eta = exit.interface.eta;
-      pdf *= eta * eta * cos_kj / cos_o / (t * t);
-      break;
-    }
-    case SuffixMeasure::kDeltaBoth:
-      break;
+  double pdf =
+      probe_area_pdf(options.probe, origin.omega_in, medium.g, origin.x_i, exit.x_k, exit.n_k) *
+      light.pdf * distance.pdf;
+  if (!exit.interface.delta()) {
+    pdf *= dielectric_transmission_pdf(exit.interface, local_o, local_kj) / (t * t);
+  } else if (!light.delta) {
+    // The refracted direction is deterministic; the refraction Jacobian relates its solid
+    // angle to omega_o's.
+    const double eta = exit.interface.eta;
+    pdf *= eta * eta * cos_kj / cos_o / (t * t);
   }
 
+  return top_to_bottom_proposal(origin, medium, exit, light, epsilon, x_j, pdf);
+}
+
+SneeProposal top_to_bottom_proposal(const SneeOrigin& origin, const SneeMedium& medium,
+                                    const ExitPoint& exit, const LightSample& light, float epsilon,
+                                    Vec3 x_j, double sampling_pdf) {
+  SneeSuffix s = make_suffix(origin, medium, exit, x_j, light.wi, light.pdf, light.delta);
+  s.light_distant = std::isinf(light.distance);
   const Vec3 inner = exit.x_k - epsilon * exit.n_k, outer = exit.x_k + epsilon * exit.n_k;
   const ShadowRay to_light = shadow_ray_to_light(light, exit.x_k, outer);
-  return proposal(s, light.radiance, pdf,
+  return proposal(s, light.radiance, sampling_pdf,
                   {segment_between(inner, x_j), segment_between(x_j, origin.x_i),
                    ShadowSegment{outer, to_light.direction, to_light.t_max}});
 }

@@ -83,6 +83,11 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kTopToBottomDimensions> u);
+// The end of propose_top_to_bottom, once x_j is sampled with density sampling_pdf from the
+// light sample `light` (simd/top_to_bottom_batch.h does the part between): builds the proposal.
+SneeProposal top_to_bottom_proposal(const SneeOrigin& origin, const SneeMedium& medium,
+                                    const ExitPoint& exit, const LightSample& light, float epsilon,
+                                    Vec3 x_j, double sampling_pdf);
 // propose_top_to_bottom, then finish_proposal.
 SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
                                    const ExitPoint& exit, const LightTable& lights,
