@@ -196,7 +196,7 @@ TEST(SneeWeightsBatch, LanesAreIndependentOfTheirBatch) {
   TestRng rng(72);
   int compared = 0;
   for (const test::SneeCase& c : kCases) {
-    for (const auto& [options, proposals] : proposal_sets(c, rng, 200)) {
+    for (const auto& [options, proposals] : proposal_sets(c, rng, 400)) {
       for (size_t k = 0; k + simd::kLanes <= proposals.size(); k += simd::kLanes) {
         const simd::ProposalWeights batch = weigh(proposals, k, simd::kLanes, options);
         for (size_t l = 0; l < simd::kLanes; ++l) {
