@@ -109,8 +109,9 @@ simd::Vec3Batch broadcast(Vec3 v) {
 void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
   const Exits e(alpha_of(state));
   std::array<LightSample, simd::kLanes> samples;
-  const simd::DielectricLanes interface{simd::FloatBatch(e.interface.eta),
-                                        simd::FloatBatch(e.interface.alpha)};
+  const simd::DielectricLanes interface {
+    simd::FloatBatch(e.interface.eta), simd::FloatBatch(e.interface.alpha)
+  };
   double sum = 0;
   for (auto _ : state) {
     for (size_t k = 0; k < bench::kItems; k += simd::kLanes) {
@@ -130,8 +131,12 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
       std::array<simd::FloatBatch, 5> u;
       for (int n = 0; n < 5; ++n) u[n] = e.numbers(k, 3 + n);
       const simd::TopToBottomBatch b = simd::propose_top_to_bottom(
-          {e.vector(k, x_i_of), e.vector(k, omega_in_of), e.vector(k, x_k_of),
-           e.vector(k, n_k_of), simd::FloatBatch(e.medium.g), broadcast(e.medium.sigma_t),
+          {e.vector(k, x_i_of),
+           e.vector(k, omega_in_of),
+           e.vector(k, x_k_of),
+           e.vector(k, n_k_of),
+           simd::FloatBatch(e.medium.g),
+           broadcast(e.medium.sigma_t),
            interface,
            {simd::FloatBatch::load_aligned(w[0]), simd::FloatBatch::load_aligned(w[1]),
             simd::FloatBatch::load_aligned(w[2])},
@@ -163,9 +168,9 @@ void BM_SneeProposeBottomToTopScalar(benchmark::State& state) {
   double sum = 0;
   for (auto _ : state) {
     for (size_t i = 0; i < bench::kItems; ++i) {
-      const SneeProposal p = propose_bottom_to_top(
-          e.origins[i], e.medium, e.exits[i], e.lights, e.options, 1e-4f,
-          std::span<const float, kBottomToTopDimensions>(e.u_of(i) + 8, 6));
+      const SneeProposal p =
+          propose_bottom_to_top(e.origins[i], e.medium, e.exits[i], e.lights, e.options, 1e-4f,
+                                std::span<const float, kBottomToTopDimensions>(e.u_of(i) + 8, 6));
       sum += p.sampling_pdf;
     }
     benchmark::DoNotOptimize(sum);
@@ -176,19 +181,19 @@ BENCHMARK(BM_SneeProposeBottomToTopScalar)->Arg(0)->Arg(20);
 
 void BM_SneeProposeBottomToTopSimd(benchmark::State& state) {
   const Exits e(alpha_of(state));
-  const simd::DielectricLanes interface{simd::FloatBatch(e.interface.eta),
-                                        simd::FloatBatch(e.interface.alpha)};
+  const simd::DielectricLanes interface {
+    simd::FloatBatch(e.interface.eta), simd::FloatBatch(e.interface.alpha)
+  };
   double sum = 0;
   for (auto _ : state) {
     for (size_t k = 0; k < bench::kItems; k += simd::kLanes) {
       std::array<simd::FloatBatch, kBottomToTopDimensions> u;
       for (int n = 0; n < kBottomToTopDimensions; ++n) u[n] = e.numbers(k, 8 + n);
       const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
-          {e.vector(k, x_i_of), e.vector(k, omega_in_of), e.vector(k, x_k_of),
-           e.vector(k, n_k_of), simd::FloatBatch(e.medium.g), interface},
+          {e.vector(k, x_i_of), e.vector(k, omega_in_of), e.vector(k, x_k_of), e.vector(k, n_k_of),
+           simd::FloatBatch(e.medium.g), interface},
           e.options, u, simd::kLanes);
-      alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], p[simd::kLanes],
-          ok[simd::kLanes];
+      alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], p[simd::kLanes], ok[simd::kLanes];
       b.x_j.x.store_aligned(x[0]);
       b.x_j.y.store_aligned(x[1]);
       b.x_j.z.store_aligned(x[2]);

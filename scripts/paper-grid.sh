@@ -3,8 +3,9 @@
 # directional, cone and environment light with GGX roughness 0.2, 0.04 and a smooth interface,
 # `snee compare` renders pt and snee at equal time against a long snee reference, three times
 # with independent seeds (the reference is made once, by the first run). Writes
-# out/grid/<scene>/run<N>/ (EXRs, compare.json, contact-sheet.png) and prints a markdown table
-# of the median efficiency ratios (scripts/grid-table.py).
+# out/grid/<scene>/run<N>/ (EXRs, compare.json, contact-sheet.png), prints a markdown table
+# of the median efficiency ratios (scripts/grid-table.py), and writes docs/results.md's pictures:
+# each scene's first contact sheet at 3x (docs/images/grid/) and the overview of all 18.
 # Usage: scripts/paper-grid.sh [SECONDS] [REF_SPP] [RES] [RUNS]
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -29,3 +30,15 @@ for object in sphere bunny; do
   done
 done
 python3 scripts/grid-table.py out/grid
+sheets=()
+for object in sphere bunny; do
+  for light in directional cone env; do
+    for surface in r0.2 r0.04 smooth; do
+      scene="$object-$light-$surface"
+      oiiotool "out/grid/$scene/run1/contact-sheet.png" --resize:filter=box 300% \
+        -o "docs/images/grid/$scene.png"
+      sheets+=("out/grid/$scene/run1/contact-sheet.png")
+    done
+  done
+done
+oiiotool "${sheets[@]}" --mosaic:pad=8 3x6 --resize:filter=box 200% -o docs/images/grid-overview.png
