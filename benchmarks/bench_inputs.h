@@ -6,6 +6,8 @@
 #include <random>
 #include <vector>
 
+#include "scene/scene.h"
+
 namespace snee::bench {
 
 // Items per iteration: a large queue (the renderer's default unit holds 256 slots; this many
@@ -19,6 +21,19 @@ inline std::vector<float> uniforms(size_t n, unsigned seed) {
   std::vector<float> u(n);
   for (float& x : u) x = unit(engine);
   return u;
+}
+
+// One distant cone light (half angle 0.3 rad, unit radiance) toward (0.5, 0.2, 1): the SNEE
+// benchmarks' light.
+inline Scene cone_light_scene() {
+  Scene scene;
+  Light light;
+  light.kind = LightKind::kCone;
+  light.direction = normalize(Vec3(0.5f, 0.2f, 1.0f));
+  light.half_angle = 0.3f;
+  light.radiance = Rgb(1.0f);
+  scene.lights.push_back(light);
+  return scene;
 }
 
 }  // namespace snee::bench

@@ -11,20 +11,9 @@
 namespace snee {
 namespace {
 
-Scene cone_light_scene() {
-  Scene scene;
-  Light light;
-  light.kind = LightKind::kCone;
-  light.direction = normalize(Vec3(0.5f, 0.2f, 1.0f));
-  light.half_angle = 0.3f;
-  light.radiance = Rgb(1.0f);
-  scene.lights.push_back(light);
-  return scene;
-}
-
 template <int Dimensions, typename Sampler>
 void run_sampler(benchmark::State& state, Sampler sampler) {
-  const Scene scene = cone_light_scene();
+  const Scene scene = bench::cone_light_scene();
   const LightTable lights(scene);
   const SneeOrigin origin{Vec3(0, 0, -0.4f), normalize(Vec3(0.3f, -0.1f, 1.0f))};
   const SneeMedium medium{Rgb(1.0f), Rgb(1.2f), 0.0f};

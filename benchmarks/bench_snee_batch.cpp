@@ -19,7 +19,7 @@ namespace snee {
 namespace {
 
 struct Exits {
-  explicit Exits(float alpha) : lights(light_scene()) {
+  explicit Exits(float alpha) : lights(bench::cone_light_scene()) {
     interface = {1.5f, alpha};
     const std::vector<float> r = bench::uniforms(bench::kItems * 7, 2);
     for (size_t i = 0; i < bench::kItems; ++i) {
@@ -29,16 +29,6 @@ struct Exits {
       exits[i] = {Vec3(2 * q[5] - 1, 2 * q[6] - 1, 0.0f), Vec3(0, 0, 1), interface};
     }
     u = bench::uniforms(bench::kItems * 16, 3);
-  }
-  static Scene light_scene() {
-    Scene scene;
-    Light light;
-    light.kind = LightKind::kCone;
-    light.direction = normalize(Vec3(0.5f, 0.2f, 1.0f));
-    light.half_angle = 0.3f;
-    light.radiance = Rgb(1.0f);
-    scene.lights.push_back(light);
-    return scene;
   }
   const float* u_of(size_t i) const { return u.data() + 16 * i; }
   simd::Vec3Batch vector(size_t k, Vec3 (*of)(const Exits&, size_t)) const {
@@ -109,9 +99,8 @@ simd::Vec3Batch broadcast(Vec3 v) {
 void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
   const Exits e(alpha_of(state));
   std::array<LightSample, simd::kLanes> samples;
-  const simd::DielectricLanes interface {
-    simd::FloatBatch(e.interface.eta), simd::FloatBatch(e.interface.alpha)
-  };
+  const simd::DielectricLanes dielectric{simd::FloatBatch(e.interface.eta),
+                                         simd::FloatBatch(e.interface.alpha)};
   double sum = 0;
   for (auto _ : state) {
     for (size_t k = 0; k < bench::kItems; k += simd::kLanes) {
@@ -137,7 +126,7 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
            e.vector(k, n_k_of),
            simd::FloatBatch(e.medium.g),
            broadcast(e.medium.sigma_t),
-           interface,
+           dielectric,
            {simd::FloatBatch::load_aligned(w[0]), simd::FloatBatch::load_aligned(w[1]),
             simd::FloatBatch::load_aligned(w[2])},
            simd::FloatBatch::load_aligned(pdf),
@@ -181,9 +170,8 @@ BENCHMARK(BM_SneeProposeBottomToTopScalar)->Arg(0)->Arg(20);
 
 void BM_SneeProposeBottomToTopSimd(benchmark::State& state) {
   const Exits e(alpha_of(state));
-  const simd::DielectricLanes interface {
-    simd::FloatBatch(e.interface.eta), simd::FloatBatch(e.interface.alpha)
-  };
+  const simd::DielectricLanes dielectric{simd::FloatBatch(e.interface.eta),
+                                         simd::FloatBatch(e.interface.alpha)};
   double sum = 0;
   for (auto _ : state) {
     for (size_t k = 0; k < bench::kItems; k += simd::kLanes) {
@@ -191,7 +179,7 @@ void BM_SneeProposeBottomToTopSimd(benchmark::State& state) {
       for (int n = 0; n < kBottomToTopDimensions; ++n) u[n] = e.numbers(k, 8 + n);
       const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
           {e.vector(k, x_i_of), e.vector(k, omega_in_of), e.vector(k, x_k_of), e.vector(k, n_k_of),
-           simd::FloatBatch(e.medium.g), interface},
+           simd::FloatBatch(e.medium.g), dielectric},
           e.options, u, simd::kLanes);
       alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], p[simd::kLanes], ok[simd::kLanes];
       b.x_j.x.store_aligned(x[0]);
