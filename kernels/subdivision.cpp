@@ -57,6 +57,7 @@ ChunkExits load_exits(const KernelContext& ctx, const PathState& state, const Ex
     eta[l] = p.eta;
     alpha[l] = p.alpha;
   }
+  // The path's latest vertex (x_j of the path state) is SNEE's x_i, as in the per-exit pass.
   return {{chunk.load(state.xj_x), chunk.load(state.xj_y), chunk.load(state.xj_z)},
           {chunk.load(state.wjn_x), chunk.load(state.wjn_y), chunk.load(state.wjn_z)},
           exit_vector(&ExitPointQueue::x_k_component),
@@ -219,6 +220,10 @@ void weigh_and_connect(const KernelContext& ctx, const PathState& state, const P
 
 }  // namespace
 
+// Passes over the exit queue: the random numbers (SIMD); top-to-bottom's light samples (per
+// exit); both strategies' straight-line sampling (SIMD); the proposals (per exit); their
+// weighing (SIMD) and the connections (per proposal). Every pass keeps queue order, so the
+// shadow queue is filled in the order the scalar samplers would fill it.
 void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
                  KernelCounters& counters) {
   const ExitPointQueue& exits = q.subdivide;
