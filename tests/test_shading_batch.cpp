@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <bit>
+#include <limits>
 #include <random>
 
 #include "kernels/bsdf/dielectric.h"
@@ -130,6 +131,32 @@ TEST(ShadingBatch, HenyeyGreensteinSampleMatchesScalar) {
   EXPECT_LE(worst, kDirectionBound) << "largest component difference " << worst;
   RecordProperty("largest_component_difference", std::to_string(worst));
   std::printf("largest direction component difference: %g (2^%.2f)\n", worst, std::log2(worst));
+}
+
+// A lane's sine and cosine do not depend on its neighbours, not even on a NaN or huge one (which
+// switches xsimd's own sincos to another argument reduction for the whole batch).
+TEST(ShadingBatch, LanewiseSincosIgnoresOtherLanes) {
+  std::mt19937 engine(17);
+  std::uniform_real_distribution<float> angle(-20.0f * kPi, 20.0f * kPi);
+  const float odd[] = {std::numeric_limits<float>::quiet_NaN(),
+                       std::numeric_limits<float>::infinity(), 1e30f, -1e6f};
+  int compared = 0;
+  for (int k = 0; k < 20000; ++k) {
+    test::Lanes<float> x;
+    for (float& v : x.v) v = angle(engine);
+    const auto [sin_ref, cos_ref] = simd::lanewise_sincos(x.batch());
+    const test::Lanes<float> s = test::to_lanes(sin_ref), c = test::to_lanes(cos_ref);
+    test::Lanes<float> y = x;
+    y.v[0] = odd[k % 4];
+    const auto [sin_y, cos_y] = simd::lanewise_sincos(y.batch());
+    const test::Lanes<float> sy = test::to_lanes(sin_y), cy = test::to_lanes(cos_y);
+    for (size_t l = 1; l < simd::kLanes; ++l) {
+      ASSERT_EQ(std::bit_cast<uint32_t>(s.v[l]), std::bit_cast<uint32_t>(sy.v[l])) << x.v[l];
+      ASSERT_EQ(std::bit_cast<uint32_t>(c.v[l]), std::bit_cast<uint32_t>(cy.v[l])) << x.v[l];
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 50000);
 }
 
 TEST(ShadingBatch, UniformSphereSampleMatchesScalar) {

@@ -39,7 +39,7 @@ inline JointImportanceSampleBatch joint_importance_sample(const JointImportanceB
 
   // Geometric lobe: p(gamma) = 2 (pi - gamma) / pi^2 about the direction to x_k.
   const FloatBatch pi_minus_gamma_geo = pi * xsimd::sqrt(one - u1);
-  const auto [sin_gamma_geo, cos_pmg] = xsimd::sincos(pi_minus_gamma_geo);
+  const auto [sin_gamma_geo, cos_pmg] = lanewise_sincos(pi_minus_gamma_geo);
   const Vec3Batch around = FrameBatch::from_normal(a).to_world(
       spherical_direction(sin_gamma_geo, -cos_pmg, FloatBatch(2.0f * kPi) * u2));
   // Phase lobe: HG about the incoming direction.
@@ -57,7 +57,7 @@ inline JointImportanceSampleBatch joint_importance_sample(const JointImportanceB
   // Equiangular step toward x_k along x_i + s w.
   const FloatBatch delta = d * cos_gamma, h = d * sin_gamma;
   const FloatBatch psi = (one - u3) * pi_minus_gamma;
-  const auto [sin_psi, cos_psi] = xsimd::sincos(psi);
+  const auto [sin_psi, cos_psi] = lanewise_sincos(psi);
   const FloatBatch s = delta + h * cos_psi / sin_psi;
   JointImportanceSampleBatch out;
   out.x_j = add(j.x_i, scale(w, s));

@@ -4,6 +4,7 @@
 
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/hg_phase_batch.h"
+#include "kernels/simd/sampling_batch.h"
 #include "kernels/snee/snee_options.h"
 
 namespace snee::simd {
@@ -65,7 +66,7 @@ struct EquiangularBatch {
   // equiangular_sample's distance for u: the angle left to pi/2 is psi = (1 - u) range, and
   // t = delta + h tan(pi/2 - psi) = delta + h cot(psi).
   FloatBatch sample(FloatBatch u) const {
-    const auto [sin_psi, cos_psi] = xsimd::sincos((FloatBatch(1.0f) - u) * range);
+    const auto [sin_psi, cos_psi] = lanewise_sincos((FloatBatch(1.0f) - u) * range);
     return delta + h * cos_psi / sin_psi;
   }
 };
