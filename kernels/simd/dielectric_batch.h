@@ -73,7 +73,7 @@ inline Vec3Batch refract(const Vec3Batch& w, const Vec3Batch& m, FloatBatch eta,
       eta * eta * xsimd::select(FloatBatch(0.0f) < cos2, cos2, FloatBatch(0.0f));
   *ok = sin2_t < FloatBatch(1.0f);
   const FloatBatch k = eta * c - xsimd::sqrt(FloatBatch(1.0f) - sin2_t);
-  const Vec3Batch a = scale(w, -eta), b = scale(m, k);
+  const Vec3Batch a = scale(w, neg(eta)), b = scale(m, k);
   return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
 
@@ -131,7 +131,7 @@ inline BsdfSampleBatch smooth_sample(const DielectricLanes& p, const Vec3Batch& 
   const Vec3Batch wt = refract(wo, normal, eta_o / eta_t, &refracted);
   const FloatBatch ratio = eta_o / eta_t;
   BsdfSampleBatch s;
-  s.wi = select(reflects, Vec3Batch{-wo.x, -wo.y, wo.z}, wt);
+  s.wi = select(reflects, Vec3Batch{neg(wo.x), neg(wo.y), wo.z}, wt);
   s.f =
       xsimd::select(reflects, fresnel / cos_o, ratio * ratio * (one - fresnel) / xsimd::abs(wt.z));
   s.pdf = xsimd::select(reflects, fresnel, one - fresnel);

@@ -14,8 +14,9 @@ struct FrameBatch {
     const FloatBatch sign = xsimd::copysign(one, n.z);
     const FloatBatch a = FloatBatch(-1.0f) / (sign + n.z);
     const FloatBatch b = n.x * n.y * a;
-    return {
-        {one + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
+    return {{one + sign * n.x * n.x * a, sign * b, -sign * n.x},
+            {b, sign + n.y * n.y * a, neg(n.y)},
+            n};
   }
   Vec3Batch to_local(const Vec3Batch& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
   Vec3Batch to_world(const Vec3Batch& v) const {

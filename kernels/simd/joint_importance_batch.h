@@ -41,7 +41,7 @@ inline JointImportanceSampleBatch joint_importance_sample(const JointImportanceB
   const FloatBatch pi_minus_gamma_geo = pi * xsimd::sqrt(one - u1);
   const auto [sin_gamma_geo, cos_pmg] = lanewise_sincos(pi_minus_gamma_geo);
   const Vec3Batch around = FrameBatch::from_normal(a).to_world(
-      spherical_direction(sin_gamma_geo, -cos_pmg, FloatBatch(2.0f * kPi) * u2));
+      spherical_direction(sin_gamma_geo, neg(cos_pmg), FloatBatch(2.0f * kPi) * u2));
   // Phase lobe: HG about the incoming direction.
   Vec3Batch phase = hg_sample(j.omega_in, j.g, u1, u2).direction;
   phase = div(phase, xsimd::sqrt(dot(phase, phase)));
@@ -50,9 +50,9 @@ inline JointImportanceSampleBatch joint_importance_sample(const JointImportanceB
   const Vec3Batch w_cross_a = cross(w, a);
   const FloatBatch sin_gamma =
       xsimd::select(geometric, sin_gamma_geo, xsimd::sqrt(dot(w_cross_a, w_cross_a)));
-  const FloatBatch cos_gamma = xsimd::select(geometric, -cos_pmg, dot(w, a));
+  const FloatBatch cos_gamma = xsimd::select(geometric, neg(cos_pmg), dot(w, a));
   const FloatBatch pi_minus_gamma =
-      xsimd::select(geometric, pi_minus_gamma_geo, xsimd::atan2(sin_gamma, -cos_gamma));
+      xsimd::select(geometric, pi_minus_gamma_geo, xsimd::atan2(sin_gamma, neg(cos_gamma)));
 
   // Equiangular step toward x_k along x_i + s w.
   const FloatBatch delta = d * cos_gamma, h = d * sin_gamma;

@@ -44,7 +44,7 @@ inline TopToBottomBatch propose_top_to_bottom(const TopToBottomExits& e, const S
       sample_transmission(e.interface, local_o, u[0], u[1], active_lanes, &transmitted);
   Vec3Batch omega_kj = frame.to_world(local_kj);
   omega_kj = div(omega_kj, xsimd::sqrt(dot(omega_kj, omega_kj)));
-  const FloatBatch cos_kj = -dot(e.n_k, omega_kj), cos_o = dot(e.n_k, e.light_wi);
+  const FloatBatch cos_kj = neg(dot(e.n_k, omega_kj)), cos_o = dot(e.n_k, e.light_wi);
   TopToBottomBatch out;
   out.refracted = transmitted && cos_kj > zero;
 

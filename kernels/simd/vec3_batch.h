@@ -29,8 +29,14 @@ inline Vec3Batch scale(const Vec3Batch& v, FloatBatch s) {
 inline Vec3Batch div(const Vec3Batch& v, FloatBatch s) {
   return {v.x / s, v.y / s, v.z / s};
 }
+// -x with IEEE sign semantics (-0 for +0), as the scalar code's unary minus. xsimd 8.1 negates
+// an AVX-512 float batch as 0 - x, which gives +0 for +0 and so parts from the scalar result on
+// zero components; flipping the sign bit is exact on every architecture.
+inline FloatBatch neg(FloatBatch x) {
+  return xsimd::bitwise_xor(x, FloatBatch(-0.0f));
+}
 inline Vec3Batch negate(const Vec3Batch& v) {
-  return {-v.x, -v.y, -v.z};
+  return {neg(v.x), neg(v.y), neg(v.z)};
 }
 inline Vec3Batch select(BoolBatch m, const Vec3Batch& a, const Vec3Batch& b) {
   return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
