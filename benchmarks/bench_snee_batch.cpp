@@ -110,7 +110,7 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
         const float* u = e.u_of(k + l);
         const LightSample& s = samples[l] =
             e.lights.sample(e.exits[k + l].x_k, u[0], Vec2{u[1], u[2]});
-        lit[l] = s.valid && s.pdf > 0 && dot(e.exits[k + l].n_k, s.wi) > 0;
+        lit[l] = lights_exit_point(s, e.exits[k + l].n_k);
         w[0][l] = s.wi.x;
         w[1][l] = s.wi.y;
         w[2][l] = s.wi.z;
@@ -133,9 +133,7 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
            simd::FloatBatch::load_aligned(delta) != simd::FloatBatch(0.0f)},
           e.options, u, simd::kLanes);
       alignas(64) float x[3][simd::kLanes], p[simd::kLanes], ok[simd::kLanes];
-      b.x_j.x.store_aligned(x[0]);
-      b.x_j.y.store_aligned(x[1]);
-      b.x_j.z.store_aligned(x[2]);
+      simd::store_aligned(b.x_j, x[0], x[1], x[2]);
       b.pdf.store_aligned(p);
       xsimd::select(b.distanced, simd::FloatBatch(1.0f), simd::FloatBatch(0.0f)).store_aligned(ok);
       for (size_t l = 0; l < simd::kLanes; ++l) {
@@ -182,12 +180,8 @@ void BM_SneeProposeBottomToTopSimd(benchmark::State& state) {
            simd::FloatBatch(e.medium.g), dielectric},
           e.options, u, simd::kLanes);
       alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], p[simd::kLanes], ok[simd::kLanes];
-      b.x_j.x.store_aligned(x[0]);
-      b.x_j.y.store_aligned(x[1]);
-      b.x_j.z.store_aligned(x[2]);
-      b.omega_o.x.store_aligned(w[0]);
-      b.omega_o.y.store_aligned(w[1]);
-      b.omega_o.z.store_aligned(w[2]);
+      simd::store_aligned(b.x_j, x[0], x[1], x[2]);
+      simd::store_aligned(b.omega_o, w[0], w[1], w[2]);
       b.pdf.store_aligned(p);
       xsimd::select(b.placed && b.refracted, simd::FloatBatch(1.0f), simd::FloatBatch(0.0f))
           .store_aligned(ok);

@@ -58,9 +58,8 @@ void sample_chunk(const KernelContext& ctx, const PathState& state, const simd::
   };
   const simd::FrameBatch frame =
       simd::FrameBatch::from_normal({at(out.nx), at(out.ny), at(out.nz)});
-  const simd::Vec3Batch wo =
-      frame.to_local({simd::neg(chunk.load(state.dir_x)), simd::neg(chunk.load(state.dir_y)),
-                      simd::neg(chunk.load(state.dir_z))});
+  const simd::Vec3Batch wo = frame.to_local(
+      simd::negate({chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)}));
   const UintBatch pixel = chunk.load(state.pixel), sample = chunk.load(state.sample);
   const UintBatch event = chunk.load(state.event);
   const simd::RandomBlockBatch r =

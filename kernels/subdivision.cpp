@@ -76,12 +76,6 @@ void store_status(simd::BoolBatch first, simd::BoolBatch second, uint32_t first_
   xsimd::bitwise_cast<simd::UintBatch>(xsimd::batch_cast<int32_t>(status)).store_aligned(out);
 }
 
-void store_vector(const simd::Vec3Batch& v, float* x, float* y, float* z) {
-  v.x.store_aligned(x);
-  v.y.store_aligned(y);
-  v.z.store_aligned(z);
-}
-
 // Top-to-bottom after the light sample, for the exits at queue positions [k, k + count).
 void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
                                 const SubdivisionScratch& scratch, StrategyResults& out,
@@ -107,7 +101,7 @@ void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
                                    at(lights.pdf),
                                    at(lights.delta) != FloatBatch(0.0f)},
                                   ctx.snee, u, count);
-  store_vector(tb.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
+  simd::store_aligned(tb.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   tb.pdf.store_aligned(out.pdf.data() + k);
   store_status(tb.refracted, tb.distanced, kSneeNotRefracted, kSneeNoDistance,
                out.status.data() + k);
@@ -122,8 +116,8 @@ void sample_bottom_to_top_chunk(const KernelContext& ctx, const ChunkExits& e,
     u[n] = simd::FloatBatch::load_aligned(randoms.u[8 + n].data() + k);
   const simd::BottomToTopBatch bt = simd::propose_bottom_to_top(
       {e.x_i, e.omega_in, e.x_k, e.n_k, e.medium.g, e.interface}, ctx.snee, u, count);
-  store_vector(bt.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
-  store_vector(bt.omega_o, out.wx.data() + k, out.wy.data() + k, out.wz.data() + k);
+  simd::store_aligned(bt.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
+  simd::store_aligned(bt.omega_o, out.wx.data() + k, out.wy.data() + k, out.wz.data() + k);
   bt.pdf.store_aligned(out.pdf.data() + k);
   store_status(bt.placed, bt.refracted, kSneeNotPlaced, kSneeNotRefracted, out.status.data() + k);
 }
@@ -135,8 +129,7 @@ void sample_lights(const KernelContext& ctx, const ExitPointQueue& exits,
   for (size_t i = 0; i < exits.size(); ++i) {
     const LightSample light =
         ctx.lights->sample(exits.x_k(i), randoms.u[0][i], Vec2{randoms.u[1][i], randoms.u[2][i]});
-    const bool lit = light.valid && light.pdf > 0 && !is_black(light.radiance) &&
-                     dot(exits.n_k(i), light.wi) > 0;
+    const bool lit = lights_exit_point(light, exits.n_k(i));
     out.samples[i] = light;
     out.wx[i] = light.wi.x;
     out.wy[i] = light.wi.y;

@@ -268,10 +268,8 @@ std::array<LaneSample, simd::kLanes> read_lanes(const simd::Vec3Batch& x_j,
   alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], p[simd::kLanes], ok[2][simd::kLanes];
   const simd::FloatBatch one(1.0f), zero(0.0f);
   for (int i = 0; i < 2; ++i) xsimd::select(passed[i], one, zero).store_aligned(ok[i]);
-  for (int i = 0; i < 3; ++i) {
-    (i == 0 ? x_j.x : i == 1 ? x_j.y : x_j.z).store_aligned(x[i]);
-    (i == 0 ? omega_o.x : i == 1 ? omega_o.y : omega_o.z).store_aligned(w[i]);
-  }
+  simd::store_aligned(x_j, x[0], x[1], x[2]);
+  simd::store_aligned(omega_o, w[0], w[1], w[2]);
   pdf.store_aligned(p);
   std::array<LaneSample, simd::kLanes> out;
   for (size_t l = 0; l < simd::kLanes; ++l) {
@@ -430,8 +428,7 @@ TEST(SneeTopToBottomBatch, AgreesWithScalarSampler) {
         for (size_t l = 0; l < simd::kLanes; ++l) {
           const LightSample light =
               lights.sample(in.setups[l].exit.x_k, us[l][0], Vec2{us[l][1], us[l][2]});
-          lit[l] = light.valid && light.pdf > 0 && !is_black(light.radiance) &&
-                   dot(in.setups[l].exit.n_k, light.wi) > 0;
+          lit[l] = lights_exit_point(light, in.setups[l].exit.n_k);
           wi[0][l] = light.wi.x;
           wi[1][l] = light.wi.y;
           wi[2][l] = light.wi.z;

@@ -49,10 +49,7 @@ inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const S
   out.omega_o = omega_o;
   out.refracted = sampled && dot(e.n_k, omega_o) > zero;
 
-  const Vec3Batch ik = sub(e.x_k, e.x_i);
-  const FloatBatch d2 = dot(ik, ik);
-  const FloatBatch probe =
-      probe_area_pdf(options.probe, e.omega_in, e.g, div(ik, xsimd::sqrt(d2)), d2, e.n_k);
+  const FloatBatch probe = probe_area_pdf(options.probe, e.omega_in, e.g, e.x_i, e.x_k, e.n_k);
   const FloatBatch btdf =
       xsimd::select(delta, one, transmission_pair(e.interface, local_kj, local_o).outward);
   out.pdf = probe * placed.pdf * btdf;

@@ -21,6 +21,14 @@ inline FloatBatch probe_area_pdf(ProbeDirections kind, const Vec3Batch& omega_in
                        FloatBatch(0.0f));
 }
 
+// The same from the two points.
+inline FloatBatch probe_area_pdf(ProbeDirections kind, const Vec3Batch& omega_in, FloatBatch g,
+                                 const Vec3Batch& x_i, const Vec3Batch& x_k, const Vec3Batch& n_k) {
+  const Vec3Batch ik = sub(x_k, x_i);
+  const FloatBatch d2 = dot(ik, ik);
+  return probe_area_pdf(kind, omega_in, g, div(ik, xsimd::sqrt(d2)), d2, n_k);
+}
+
 // A transmission pair through a rough interface in its local frame (outward normal +z):
 // local_kj on the medium side, local_o outside. Its generalised half vector (oriented to +z)
 // and dielectric_transmission_pdf in both directions.

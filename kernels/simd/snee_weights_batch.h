@@ -103,17 +103,15 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   const FloatBatch top_to_bottom = probe * s.light_pdf * refraction * distance / r_jk2;
 
   // Bottom-to-top: probe, joint-importance placement of x_j, outward refraction.
-  const FloatBatch sin_gamma =
-      xsimd::sqrt(dot(cross(omega_ij, omega_ik), cross(omega_ij, omega_ik)));
+  const Vec3Batch ij_cross_ik = cross(omega_ij, omega_ik);
+  const FloatBatch sin_gamma = xsimd::sqrt(dot(ij_cross_ik, ij_cross_ik));
   const FloatBatch pi_minus_gamma = xsimd::atan2(sin_gamma, neg(dot(omega_ij, omega_ik)));
   const FloatBatch geometric = xsimd::select(s.g == zero, one, FloatBatch(options.c_joint));
   const FloatBatch inv_pi3(
       static_cast<float>(1.0 / (std::numbers::pi * std::numbers::pi * std::numbers::pi)));
   const FloatBatch placement =
       (geometric * d * inv_pi3 +
-       xsimd::select(geometric < one,
-                     (one - geometric) * hg_phase(dot(s.omega_in, omega_ij), s.g) * d * sin_gamma /
-                         pi_minus_gamma,
+       xsimd::select(geometric < one, (one - geometric) * phase_i * d * sin_gamma / pi_minus_gamma,
                      zero)) /
       (r_jk2 * r_ij2);
   const BoolBatch placed = sin_gamma > zero && pi_minus_gamma > zero;
@@ -143,26 +141,36 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   return out;
 }
 
-// mis_weight (snee/snee_pdfs.cpp) of strategy st over the enabled strategies, from densities
-// scaled by the largest one.
-inline FloatBatch mis_weight(Strategy st, const SuffixWeighing& w, const SneeOptions& options) {
-  const FloatBatch zero(0.0f);
-  if (!options.enabled.contains(st)) return zero;
-  FloatBatch largest = zero;
-  for (int t = 0; t < kStrategyCount; ++t) {
-    if (options.enabled.contains(static_cast<Strategy>(t))) largest = xsimd::max(largest, w.pdf[t]);
+// mis_weight (snee/snee_pdfs.cpp) over the enabled strategies, from densities scaled by the
+// largest one; the sum over the strategies is formed once for every strategy's weight.
+class MisWeights {
+ public:
+  MisWeights(const SuffixWeighing& w, const SneeOptions& options) : w_(w), options_(options) {
+    for (int t = 0; t < kStrategyCount; ++t) {
+      if (options.enabled.contains(static_cast<Strategy>(t)))
+        largest_ = xsimd::max(largest_, w.pdf[t]);
+    }
+    for (int t = 0; t < kStrategyCount; ++t) {
+      if (options.enabled.contains(static_cast<Strategy>(t))) sum_ += heuristic(w.pdf[t]);
+    }
   }
-  const auto heuristic = [&](FloatBatch p) {
-    const FloatBatch r = p / largest;
-    return options.heuristic == MisHeuristic::kPower ? r * r : r;
-  };
-  FloatBatch sum = zero;
-  for (int t = 0; t < kStrategyCount; ++t) {
-    if (options.enabled.contains(static_cast<Strategy>(t))) sum += heuristic(w.pdf[t]);
+  // The weight of strategy st; 0 where it is disabled or cannot produce the suffix.
+  FloatBatch operator()(Strategy st) const {
+    const FloatBatch zero(0.0f);
+    if (!options_.enabled.contains(st)) return zero;
+    const FloatBatch own = w_.pdf[static_cast<int>(st)];
+    return xsimd::select(own > zero, heuristic(own) / sum_, zero);
   }
-  const FloatBatch own = w.pdf[static_cast<int>(st)];
-  return xsimd::select(own > zero, heuristic(own) / sum, zero);
-}
+
+ private:
+  FloatBatch heuristic(FloatBatch p) const {
+    const FloatBatch r = p / largest_;
+    return options_.heuristic == MisHeuristic::kPower ? r * r : r;
+  }
+  const SuffixWeighing& w_;
+  const SneeOptions& options_;
+  FloatBatch largest_ = FloatBatch(0.0f), sum_ = FloatBatch(0.0f);
+};
 
 // Fills a batch from suffix_of(l), the suffix of lane l, for lanes [0, count); the padding
 // lanes repeat lane 0.
@@ -216,8 +224,9 @@ ProposalWeights weigh_proposals(ProposalOf&& proposal_of, size_t count,
                     count),
       options);
   alignas(64) float weight[2][kLanes], attenuation[3][kLanes], path[kLanes], pdf_sum[kLanes];
-  mis_weight(Strategy::kTopToBottom, w, options).store_aligned(weight[0]);
-  mis_weight(Strategy::kBottomToTop, w, options).store_aligned(weight[1]);
+  const MisWeights mis(w, options);
+  mis(Strategy::kTopToBottom).store_aligned(weight[0]);
+  mis(Strategy::kBottomToTop).store_aligned(weight[1]);
   w.attenuation.x.store_aligned(attenuation[0]);
   w.attenuation.y.store_aligned(attenuation[1]);
   w.attenuation.z.store_aligned(attenuation[2]);

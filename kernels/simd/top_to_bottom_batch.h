@@ -56,10 +56,7 @@ inline TopToBottomBatch propose_top_to_bottom(const TopToBottomExits& e, const S
   const FloatBatch distance = distance_mixture_pdf(options.c_exponential, flight, equiangular, t);
   out.x_j = add(e.x_k, scale(omega_kj, t));
 
-  const Vec3Batch ik = sub(e.x_k, e.x_i);
-  const FloatBatch d2 = dot(ik, ik);
-  const FloatBatch probe =
-      probe_area_pdf(options.probe, e.omega_in, e.g, div(ik, xsimd::sqrt(d2)), d2, e.n_k);
+  const FloatBatch probe = probe_area_pdf(options.probe, e.omega_in, e.g, e.x_i, e.x_k, e.n_k);
   const FloatBatch eta = e.interface.eta;
   const FloatBatch refraction = xsimd::select(
       e.interface.delta(), xsimd::select(e.light_delta, t * t, eta * eta * cos_kj / cos_o),

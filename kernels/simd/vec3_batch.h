@@ -38,6 +38,12 @@ inline FloatBatch neg(FloatBatch x) {
 inline Vec3Batch negate(const Vec3Batch& v) {
   return {neg(v.x), neg(v.y), neg(v.z)};
 }
+// Stores the components to three aligned arrays.
+inline void store_aligned(const Vec3Batch& v, float* x, float* y, float* z) {
+  v.x.store_aligned(x);
+  v.y.store_aligned(y);
+  v.z.store_aligned(z);
+}
 inline Vec3Batch select(BoolBatch m, const Vec3Batch& a, const Vec3Batch& b) {
   return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
 }

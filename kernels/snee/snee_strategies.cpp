@@ -64,11 +64,8 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kTopToBottomDimensions> u) {
   const LightSample light = lights.sample(exit.x_k, u[0], Vec2{u[1], u[2]});
-  if (!light.valid || !(light.pdf > 0) || is_black(light.radiance)) {
-    return failed_proposal(SneeFailure::kNoLight);
-  }
+  if (!lights_exit_point(light, exit.n_k)) return failed_proposal(SneeFailure::kNoLight);
   const double cos_o = dot(exit.n_k, light.wi);
-  if (!(cos_o > 0)) return failed_proposal(SneeFailure::kNoLight);
 
   // Inward direction: transmission lobe only, given the light-side direction.
   const Frame frame = Frame::from_normal(exit.n_k);

@@ -79,6 +79,11 @@ struct SneeProposal {
 // the inward transmission, u[5] distance technique, u[6] free-flight colour channel, u[7]
 // distance.
 inline constexpr int kTopToBottomDimensions = 8;
+// Whether top-to-bottom can start from light sample `light` at an exit point with outward
+// normal n_k: a light that gives radiance from above the exit point's horizon.
+inline bool lights_exit_point(const LightSample& light, Vec3 n_k) {
+  return light.valid && light.pdf > 0 && !is_black(light.radiance) && dot(n_k, light.wi) > 0;
+}
 SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,
