@@ -56,8 +56,8 @@ size_t triangle_count(const Scene& scene) {
   return n;
 }
 
-// Peak memory at spp and 4 spp on the same workload: the film and the pass buffers are the only
-// allocations that could grow with spp, and passes bound them.
+// Peak memory at spp and 4 spp on the same workload: the film and the units' sample buffers are
+// the only allocations that could grow with spp, and the unit window bounds the buffers.
 nlohmann::ordered_json memory_versus_spp(const BenchWorkload& w, const Settings& settings) {
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
   for (const int spp : {settings.spp, 4 * settings.spp}) {
@@ -94,8 +94,8 @@ BenchCommand::BenchCommand(CLI::App& parent)
   c.add_option("--repeats", repeats_, "Renders per measurement; the median is reported")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  c.add_option("--samples-per-pass", samples_per_pass_,
-               "Samples each work unit takes per pixel in one pass (sets the unit size)")
+  c.add_option("--samples-per-unit", samples_per_unit_,
+               "Sample indices per pixel in one work unit (a tile times this many samples)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   c.add_option("--queue-capacity", queue_capacity_,
@@ -165,7 +165,7 @@ int BenchCommand::run() const {
           o.integrator = w.integrator;
           o.max_depth = w.max_depth;
           o.schedule = run.schedule;
-          o.samples_per_pass = samples_per_pass_;
+          o.samples_per_unit = samples_per_unit_;
           o.queue_capacity = queue_capacity_;
           run.queue_capacity = run.schedule == "megakernel" ? 1 : o.queue_capacity;
           run.measurement.repeat(w.scene, o);
@@ -201,7 +201,7 @@ int BenchCommand::run() const {
           {"resolution",
            {{"width", settings.resolution.width}, {"height", settings.resolution.height}}},
           {"repeats", settings.repeats},
-          {"samples_per_pass", samples_per_pass_},
+          {"samples_per_unit", samples_per_unit_},
           {"queue_capacity", queue_capacity_},
           {"quick", quick_},
           {"raw_rays_per_query", settings.raw_rays},

@@ -25,7 +25,7 @@ class BenchCommand {
   int spp_ = 16;
   std::string resolution_ = "128x128";
   int repeats_ = 3;
-  int samples_per_pass_ = RenderOptions{}.samples_per_pass;
+  int samples_per_unit_ = RenderOptions{}.samples_per_unit;
   int queue_capacity_ = RenderOptions{}.queue_capacity;
   bool quick_ = false;
   std::string json_;

@@ -39,8 +39,8 @@ struct Figures {
 Figures figures(const BenchRun& run, const EmbreeThroughput& raw) {
   const RenderStats& s = run.measurement.median();
   Figures f;
-  f.seconds = s.pass_seconds;
-  f.cpu_seconds = s.pass_cpu_seconds;
+  f.seconds = s.sampling_seconds;
+  f.cpu_seconds = s.sampling_cpu_seconds;
   f.cpu_share = f.seconds > 0 ? f.cpu_seconds / (f.seconds * run.threads) : 0;
   auto per = [](double count, double seconds) { return seconds > 0 ? count / seconds : 0; };
   f.paths_per_second = per(static_cast<double>(s.paths), f.seconds);
@@ -176,8 +176,8 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
         {"seconds", f.seconds},
         {"cpu_seconds", f.cpu_seconds},
         {"cpu_share", f.cpu_share},
-        {"repeat_seconds", run.measurement.pass_seconds()},
-        {"repeat_cpu_seconds", run.measurement.pass_cpu_seconds()},
+        {"repeat_seconds", run.measurement.sampling_seconds()},
+        {"repeat_cpu_seconds", run.measurement.sampling_cpu_seconds()},
         {"paths", s.paths},
         {"paths_per_second", f.paths_per_second},
         {"paths_per_cpu_second", f.paths_per_cpu_second},

@@ -16,20 +16,20 @@ const RenderStats& Measurement::median() const {
   std::vector<const RenderStats*> order;
   for (const RenderStats& r : runs_) order.push_back(&r);
   std::sort(order.begin(), order.end(), [](const RenderStats* a, const RenderStats* b) {
-    return a->pass_seconds < b->pass_seconds;
+    return a->sampling_seconds < b->sampling_seconds;
   });
   return *order[order.size() / 2];
 }
 
-std::vector<double> Measurement::pass_seconds() const {
+std::vector<double> Measurement::sampling_seconds() const {
   std::vector<double> s;
-  for (const RenderStats& r : runs_) s.push_back(r.pass_seconds);
+  for (const RenderStats& r : runs_) s.push_back(r.sampling_seconds);
   return s;
 }
 
-std::vector<double> Measurement::pass_cpu_seconds() const {
+std::vector<double> Measurement::sampling_cpu_seconds() const {
   std::vector<double> s;
-  for (const RenderStats& r : runs_) s.push_back(r.pass_cpu_seconds);
+  for (const RenderStats& r : runs_) s.push_back(r.sampling_cpu_seconds);
   return s;
 }
 

@@ -1,5 +1,5 @@
 // Repeated renders for throughput studies (`snee bench`, `snee scale`): the same scene and
-// options rendered several times, summarised by the run with the median sample-pass time,
+// options rendered several times, summarised by the run with the median sampling time,
 // which is robust against the odd run slowed by other work on a shared machine. Repeats of
 // configurations that are compared with each other can be interleaved (one repeat of each in
 // turn), so a burst of other work slows them alike.
@@ -16,9 +16,9 @@ class Measurement {
  public:
   // Renders once more and keeps the run's statistics and peak memory.
   void repeat(const Scene& scene, const RenderOptions& options);
-  const RenderStats& median() const;             // the run with the median sample-pass time
-  std::vector<double> pass_seconds() const;      // every repeat, in run order
-  std::vector<double> pass_cpu_seconds() const;  // every repeat, in run order
+  const RenderStats& median() const;                 // the run with the median sampling time
+  std::vector<double> sampling_seconds() const;      // every repeat, in run order
+  std::vector<double> sampling_cpu_seconds() const;  // every repeat, in run order
   double peak_memory_mib() const { return peak_memory_mib_; }  // highest over the repeats
 
  private:

@@ -86,8 +86,8 @@ RenderCommand::RenderCommand(CLI::App& parent)
   c.add_option("--tile-size", options_.tile_size, "Work-unit tile edge in pixels")
       ->check(integer_at_least(1))
       ->capture_default_str();
-  c.add_option("--samples-per-pass", options_.samples_per_pass,
-               "Samples each work unit takes per pixel in one pass")
+  c.add_option("--samples-per-unit", options_.samples_per_unit,
+               "Sample indices per pixel in one work unit (a tile times this many samples)")
       ->check(integer_at_least(1))
       ->capture_default_str();
   c.add_option("--schedule", options_.schedule,

@@ -91,8 +91,8 @@ int ScaleCommand::run() const {
   for (size_t i = 0; i < threads.size(); ++i) {
     if (threads[i] < threads[base]) base = i;
   }
-  const double base_seconds = measurements[base].median().pass_seconds * threads[base];
-  const double base_cpu_seconds = measurements[base].median().pass_cpu_seconds;
+  const double base_seconds = measurements[base].median().sampling_seconds * threads[base];
+  const double base_cpu_seconds = measurements[base].median().sampling_cpu_seconds;
   std::vector<ScalePoint> points;
   nlohmann::ordered_json results = nlohmann::ordered_json::array();
   std::printf("%7s %10s %10s %10s %6s %11s %8s %10s %10s\n", "threads", "seconds", "min", "max",
@@ -100,31 +100,32 @@ int ScaleCommand::run() const {
   for (size_t i = 0; i < threads.size(); ++i) {
     const Measurement& m = measurements[i];
     const RenderStats& s = m.median();
-    const std::vector<double> repeat_seconds = m.pass_seconds();
-    const double speedup = s.pass_seconds > 0 ? base_seconds / s.pass_seconds : 0;
+    const std::vector<double> repeat_seconds = m.sampling_seconds();
+    const double speedup = s.sampling_seconds > 0 ? base_seconds / s.sampling_seconds : 0;
     const double efficiency = speedup / threads[i];
     const double work_efficiency =
-        s.pass_cpu_seconds > 0 ? base_cpu_seconds / s.pass_cpu_seconds : 0;
+        s.sampling_cpu_seconds > 0 ? base_cpu_seconds / s.sampling_cpu_seconds : 0;
     const double cpu_share =
-        s.pass_seconds > 0 ? s.pass_cpu_seconds / (s.pass_seconds * threads[i]) : 0;
+        s.sampling_seconds > 0 ? s.sampling_cpu_seconds / (s.sampling_seconds * threads[i]) : 0;
     const double paths_per_second =
-        s.pass_seconds > 0 ? static_cast<double>(s.paths) / s.pass_seconds : 0;
+        s.sampling_seconds > 0 ? static_cast<double>(s.paths) / s.sampling_seconds : 0;
     points.push_back({threads[i], speedup, efficiency, work_efficiency});
     std::printf("%7d %10.3f %10.3f %10.3f %5.0f%% %11.0f %7.2fx %9.1f%% %9.1f%%\n", threads[i],
-                s.pass_seconds, *std::min_element(repeat_seconds.begin(), repeat_seconds.end()),
+                s.sampling_seconds, *std::min_element(repeat_seconds.begin(), repeat_seconds.end()),
                 *std::max_element(repeat_seconds.begin(), repeat_seconds.end()), 100 * cpu_share,
                 paths_per_second, speedup, 100 * efficiency, 100 * work_efficiency);
     results.push_back(
         {{"threads", threads[i]},
-         {"seconds", s.pass_seconds},
+         {"seconds", s.sampling_seconds},
          {"repeat_seconds", repeat_seconds},
-         {"cpu_seconds", s.pass_cpu_seconds},
-         {"repeat_cpu_seconds", m.pass_cpu_seconds()},
+         {"cpu_seconds", s.sampling_cpu_seconds},
+         {"repeat_cpu_seconds", m.sampling_cpu_seconds()},
          {"cpu_share", cpu_share},
          {"paths", s.paths},
          {"paths_per_second", paths_per_second},
-         {"mrays_per_second",
-          s.pass_seconds > 0 ? static_cast<double>(s.total_rays()) / s.pass_seconds * 1e-6 : 0},
+         {"mrays_per_second", s.sampling_seconds > 0
+                                  ? static_cast<double>(s.total_rays()) / s.sampling_seconds * 1e-6
+                                  : 0},
          {"speedup", speedup},
          {"efficiency", efficiency},
          {"work_efficiency", work_efficiency},

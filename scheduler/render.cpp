@@ -1,7 +1,6 @@
 #include "scheduler/render.h"
 
 #include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -13,9 +12,9 @@
 #include "kernels/lights/light_table.h"
 #include "kernels/simd/arch.h"
 #include "scene/embree_scene.h"
-#include "scheduler/pass_schedules.h"
 #include "scheduler/schedule.h"
 #include "scheduler/threading.h"
+#include "scheduler/unit_schedules.h"
 #include "scheduler/work_unit.h"
 
 namespace snee {
@@ -57,14 +56,14 @@ void validate(const Scene& scene, const RenderOptions& o) {
   if (o.max_depth < 0) throw std::invalid_argument("max depth must not be negative");
   if (o.queue_capacity < 16) throw std::invalid_argument("queue capacity must be at least 16");
   if (o.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
-  if (o.samples_per_pass < 1) throw std::invalid_argument("samples per pass must be at least 1");
+  if (o.samples_per_unit < 1) throw std::invalid_argument("samples per unit must be at least 1");
   if (scene.camera.width < 1 || scene.camera.height < 1) throw std::invalid_argument("empty image");
 }
 
-// A pass holds at least this many units (when the image and spp allow). It is a constant, not
-// a multiple of the thread count, so every thread count runs the same passes: scaling studies
-// then compare equal work with equal barriers.
-constexpr size_t kMinUnitsPerPass = 128;
+// Units in flight per thread (the window's lead, unit_window.h). A unit holds up the threads
+// only once they have run this many units past it, so tiles of very different cost (sky beside
+// marble) never idle a thread, while the sample buffers stay a few megabytes per thread.
+constexpr size_t kUnitsInFlightPerThread = 32;
 // The global schedule keeps this many units per thread in flight.
 constexpr size_t kGlobalLanesPerThread = 8;
 
@@ -101,27 +100,18 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
   const LightTable lights(scene);
   const KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
                           options.snee);
-  const auto passes_start = std::chrono::steady_clock::now();
-  const double passes_cpu_start = cpu_seconds();
+  const auto sampling_start = std::chrono::steady_clock::now();
+  const double sampling_cpu_start = cpu_seconds();
 
-  const int width = scene.camera.width, height = scene.camera.height, ts = options.tile_size;
-  std::vector<WorkUnit> tiles;
-  for (int y = 0; y < height; y += ts) {
-    for (int x = 0; x < width; x += ts)
-      tiles.push_back({x, y, std::min(x + ts, width), std::min(y + ts, height), 0, 0});
-  }
-  // A pass renders a block of sample indices for every pixel; its units are tiles times
-  // sample chunks. How the block is cut into units never changes the image: every sample is a
-  // pure function of its pixel and index, and the film adds samples in index order.
+  const int width = scene.camera.width, height = scene.camera.height;
   const uint32_t spp = static_cast<uint32_t>(options.spp);
-  const uint32_t chunk = static_cast<uint32_t>(options.samples_per_pass);
-  const uint32_t chunks_per_pass = static_cast<uint32_t>(std::clamp<size_t>(
-      (kMinUnitsPerPass + tiles.size() - 1) / tiles.size(), 1, (spp + chunk - 1) / chunk));
-
-  const size_t pixel_count = static_cast<size_t>(width) * height;
-  std::vector<double> sum(pixel_count * 3, 0.0), sum_sq(pixel_count * 3, 0.0);
-  std::vector<Rgb> pass_samples(pixel_count *
-                                std::min<size_t>(spp, size_t{chunk} * chunks_per_pass));
+  const UnitGrid grid(width, height, options.tile_size, spp,
+                      static_cast<uint32_t>(options.samples_per_unit));
+  const size_t lead = std::min(grid.size(), kUnitsInFlightPerThread * threads);
+  UnitWindow window(grid.size(), lead);
+  FilmAccumulator film_sums(grid, width, height, lead);
+  UnitProgress unit_progress(progress, static_cast<int64_t>(width) * height * spp, start);
+  const UnitSource source{grid, window, film_sums, unit_progress};
 
   // The megakernel is the same loop over one-slot workspaces: one path at a time per thread.
   const size_t slots =
@@ -129,77 +119,25 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
   ThreadWorkspaces workspaces(slots);
   std::vector<std::unique_ptr<UnitWorkspace>> lanes;
   if (schedule == Schedule::kGlobal) {
-    const size_t lane_count =
-        std::min(tiles.size() * chunks_per_pass, kGlobalLanesPerThread * threads);
+    const size_t lane_count = std::min(lead, kGlobalLanesPerThread * threads);
     for (size_t i = 0; i < lane_count; ++i) lanes.push_back(std::make_unique<UnitWorkspace>(slots));
   }
-  UnitProgress unit_progress(progress, static_cast<int64_t>(pixel_count) * spp, start);
-
-  for (uint32_t pass_begin = 0; pass_begin < spp; pass_begin += chunk * chunks_per_pass) {
-    const uint32_t pass_end = std::min(spp, pass_begin + chunk * chunks_per_pass);
-    Pass pass;
-    size_t offset = 0;
-    for (uint32_t s = pass_begin; s < pass_end; s += chunk) {
-      for (WorkUnit u : tiles) {
-        u.sample_begin = s;
-        u.sample_end = std::min(pass_end, s + chunk);
-        pass.units.push_back(u);
-        pass.offsets.push_back(offset);
-        offset += u.sample_count();
-      }
+  arena.execute([&] {
+    if (schedule == Schedule::kGlobal) {
+      run_units_breadth_first(ctx, source, lanes);
+    } else {
+      run_units_depth_first(ctx, source, threads, workspaces);
     }
-    arena.execute([&] {
-      if (schedule == Schedule::kGlobal) {
-        run_pass_breadth_first(ctx, pass, pass_samples.data(), lanes, unit_progress);
-      } else {
-        run_pass_depth_first(ctx, pass, pass_samples.data(), workspaces, unit_progress);
-      }
-      // Fold the pass into the film: tiles in parallel, and within a tile its sample chunks in
-      // order, so every pixel adds its samples in index order whatever the thread count.
-      tbb::parallel_for(size_t{0}, tiles.size(), [&](size_t t) {
-        for (size_t i = t; i < pass.units.size(); i += tiles.size()) {
-          const WorkUnit& u = pass.units[i];
-          const Rgb* samples = pass_samples.data() + pass.offsets[i];
-          const int tile_w = u.x1 - u.x0;
-          for (uint32_t s = 0; s < u.sample_end - u.sample_begin; ++s) {
-            for (int y = u.y0; y < u.y1; ++y) {
-              for (int x = u.x0; x < u.x1; ++x) {
-                const Rgb v = samples[s * static_cast<size_t>(u.pixel_count()) +
-                                      static_cast<size_t>((y - u.y0) * tile_w + (x - u.x0))];
-                const size_t pixel = static_cast<size_t>(y) * width + x;
-                for (int c = 0; c < 3; ++c) {
-                  sum[3 * pixel + c] += v[c];
-                  sum_sq[3 * pixel + c] += static_cast<double>(v[c]) * v[c];
-                }
-              }
-            }
-          }
-        }
-      });
-    });
-  }
+  });
 
   RenderResult result;
+  result.film = film_sums.resolve(spp);
   Film& film = result.film;
-  film.width = width;
-  film.height = height;
-  film.mean.resize(pixel_count);
-  film.variance_of_mean.resize(pixel_count);
-  const double n = spp;
-  for (size_t p = 0; p < pixel_count; ++p) {
-    for (int c = 0; c < 3; ++c) {
-      const double mean = sum[3 * p + c] / n;
-      const double var =
-          spp > 1 ? std::max(0.0, (sum_sq[3 * p + c] - n * mean * mean) / (n - 1)) : 0.0;
-      film.mean[p][c] = static_cast<float>(mean);
-      film.variance_of_mean[p][c] = static_cast<float>(var / n);
-    }
-  }
   RenderStats& stats = result.stats;
   const auto end = std::chrono::steady_clock::now();
   stats.seconds = std::chrono::duration<double>(end - start).count();
-  stats.pass_seconds = std::chrono::duration<double>(end - passes_start).count();
-  stats.pass_cpu_seconds = cpu_seconds() - passes_cpu_start;
+  stats.sampling_seconds = std::chrono::duration<double>(end - sampling_start).count();
+  stats.sampling_cpu_seconds = cpu_seconds() - sampling_cpu_start;
   stats.threads = threads;
   stats.path_state_bytes_per_slot = PathState::bytes_per_slot();
   KernelCounters counters;

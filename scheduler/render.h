@@ -39,7 +39,7 @@ struct RenderOptions {
   int max_depth = 1024;
   int queue_capacity = 256;  // path slots per work unit (batch size of every stage)
   int tile_size = 16;        // work-unit tile edge in pixels (fixed by image, never by threads)
-  int samples_per_pass = 8;  // samples each work unit takes per pixel in one pass
+  int samples_per_unit = 8;  // sample indices per pixel in one work unit
   std::string schedule = "local";  // "megakernel", "local" or "global" (scheduler/schedule.h)
   SneeOptions snee;                // open choices of docs/snee.md section 7 (integrator "snee")
 };
@@ -58,9 +58,9 @@ struct RenderStats {
   std::array<uint64_t, static_cast<int>(RayKind::kCount)> rays{};
   std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};  // summed over threads
   std::array<uint64_t, static_cast<int>(Stage::kCount)> stage_calls{};  // stage runs on a unit
-  double pass_seconds = 0;      // wall clock of the sample passes (no scene setup)
-  double pass_cpu_seconds = 0;  // process CPU time over the passes, all threads
-  double queue_occupancy = 0;   // mean over loop turns of the fraction of slots holding a path
+  double sampling_seconds = 0;      // wall clock of running the work units (no scene setup)
+  double sampling_cpu_seconds = 0;  // process CPU time over the same interval, all threads
+  double queue_occupancy = 0;       // mean over loop turns of the fraction of slots holding a path
   uint64_t paths = 0;
   uint64_t nonfinite_samples = 0;  // dropped (counted, never averaged in)
   SneeCounters snee{};

@@ -71,7 +71,7 @@ TEST_F(CliTest, RenderHelpListsEveryOption) {
   for (const char* option :
        {"SCENE", "builtin:", "--spp", "--threads", "--seed", "--integrator", "-o", "--output",
         "--stats", "--resolution", "--max-depth", "--queue-capacity", "--tile-size",
-        "--samples-per-pass", "--schedule", "--quiet"})
+        "--samples-per-unit", "--schedule", "--quiet"})
     EXPECT_TRUE(contains(run.output, option)) << option << " missing from:\n" << run.output;
 }
 

@@ -30,8 +30,14 @@ TEST_P(Determinism, ThreadsBatchSizesAndTilesGiveIdenticalBytes) {
   small_batches.threads = 2;
   RenderOptions other_tiles = base;
   other_tiles.tile_size = 7;
-  other_tiles.samples_per_pass = 2;
-  for (const RenderOptions& o : {two_threads, small_batches, other_tiles}) {
+  other_tiles.samples_per_unit = 2;
+  // More threads than the machine has and units of one sample, so that several chunks of one
+  // tile are in flight at once and finish out of order (the film parks the early finishers).
+  RenderOptions many_threads = base;
+  many_threads.threads = 8;
+  many_threads.tile_size = 20;
+  many_threads.samples_per_unit = 1;
+  for (const RenderOptions& o : {two_threads, small_batches, other_tiles, many_threads}) {
     const Film film = render(scene, o).film;
     EXPECT_TRUE(test::bitwise_identical(reference, film))
         << "threads " << o.threads << " capacity " << o.queue_capacity << " tile " << o.tile_size;

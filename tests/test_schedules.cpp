@@ -29,7 +29,7 @@ RenderOptions small_options(const char* integrator) {
   o.threads = 1;
   // Small units and queues, so every schedule interleaves several units and refills slots.
   o.tile_size = 8;
-  o.samples_per_pass = 2;
+  o.samples_per_unit = 2;
   o.queue_capacity = 64;
   return o;
 }

@@ -1,0 +1,28 @@
+#include <tbb/parallel_for.h>
+
+#include "scheduler/threading.h"
+#include "scheduler/unit_schedules.h"
+
+namespace snee {
+
+void run_units_depth_first(const KernelContext& ctx, const UnitSource& source, int threads,
+                           ThreadWorkspaces& workspaces) {
+  // One long-running loop per thread, each taking units in order: a unit queue, not a range
+  // split, so the units in flight stay inside the window whatever the thread count.
+  tbb::parallel_for(
+      0, threads,
+      [&](int) {
+        set_flush_to_zero();
+        UnitWorkspace& ws = workspaces.local();
+        while (const std::optional<size_t> k = source.window.take(/*wait=*/true)) {
+          const WorkUnit unit = source.grid.unit(*k);
+          run_work_unit(ctx, unit, ws, source.film.buffer(*k));
+          source.film.add(*k);
+          source.window.finish(*k);
+          source.progress.unit_finished(ws);
+        }
+      },
+      tbb::simple_partitioner());
+}
+
+}  // namespace snee

@@ -1,0 +1,81 @@
+#include "scheduler/film_accumulator.h"
+
+#include <algorithm>
+
+namespace snee {
+
+FilmAccumulator::FilmAccumulator(const UnitGrid& grid, int width, int height, size_t buffers)
+    : grid_(grid),
+      width_(width),
+      height_(height),
+      buffer_count_(buffers),
+      buffer_size_(grid.max_unit_samples()),
+      buffers_(buffers * buffer_size_),
+      tiles_(new Tile[grid.tile_count()]),
+      sum_(static_cast<size_t>(width) * height * 3, 0.0),
+      sum_sq_(static_cast<size_t>(width) * height * 3, 0.0) {}
+
+Rgb* FilmAccumulator::buffer(size_t unit) {
+  return buffers_.data() + (unit % buffer_count_) * buffer_size_;
+}
+
+void FilmAccumulator::add(size_t unit) {
+  Tile& tile = tiles_[grid_.tile_of(unit)];
+  std::lock_guard<std::mutex> lock(tile.mutex);
+  if (grid_.chunk_of(unit) != tile.next_chunk) {
+    tile.parked.push_back(unit);
+    return;
+  }
+  add_to_sums(unit);
+  ++tile.next_chunk;
+  // Parked units of this tile are later chunks; add them while they follow on without a gap.
+  for (;;) {
+    const auto next = std::find_if(tile.parked.begin(), tile.parked.end(),
+                                   [&](size_t u) { return grid_.chunk_of(u) == tile.next_chunk; });
+    if (next == tile.parked.end()) break;
+    add_to_sums(*next);
+    ++tile.next_chunk;
+    tile.parked.erase(next);
+  }
+}
+
+void FilmAccumulator::add_to_sums(size_t k) {
+  const WorkUnit u = grid_.unit(k);
+  const Rgb* samples = buffer(k);
+  const int tile_w = u.x1 - u.x0;
+  const size_t pixels = static_cast<size_t>(u.pixel_count());
+  for (uint32_t s = 0; s < u.sample_end - u.sample_begin; ++s) {
+    for (int y = u.y0; y < u.y1; ++y) {
+      for (int x = u.x0; x < u.x1; ++x) {
+        const Rgb v = samples[s * pixels + static_cast<size_t>((y - u.y0) * tile_w + (x - u.x0))];
+        const size_t pixel = static_cast<size_t>(y) * width_ + x;
+        for (int c = 0; c < 3; ++c) {
+          sum_[3 * pixel + c] += v[c];
+          sum_sq_[3 * pixel + c] += static_cast<double>(v[c]) * v[c];
+        }
+      }
+    }
+  }
+}
+
+Film FilmAccumulator::resolve(uint32_t spp) const {
+  Film film;
+  film.width = width_;
+  film.height = height_;
+  const size_t pixel_count = static_cast<size_t>(width_) * height_;
+  film.mean.resize(pixel_count);
+  film.variance_of_mean.resize(pixel_count);
+  const double n = spp;
+  for (size_t p = 0; p < pixel_count; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const double mean = sum_[3 * p + c] / n;
+      const double var =
+          spp > 1 ? std::max(0.0, (sum_sq_[3 * p + c] - n * mean * mean) / (n - 1)) : 0.0;
+      film.mean[p][c] = static_cast<float>(mean);
+      film.variance_of_mean[p][c] = static_cast<float>(var / n);
+    }
+  }
+  return film;
+}
+
+}  // namespace snee

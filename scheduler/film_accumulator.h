@@ -1,0 +1,50 @@
+// Per-pixel sums of samples and of squared samples, filled as work units finish, in whatever
+// order they finish. Each tile's units are added in sample order: a unit that finishes before
+// an earlier unit of its tile stays parked in its buffer until that one is added. Every pixel
+// therefore adds its samples in index order, and the sums are bitwise the same for any thread
+// count or schedule.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "scene/film.h"
+#include "scene/math.h"
+#include "scheduler/unit_grid.h"
+
+namespace snee {
+
+class FilmAccumulator {
+ public:
+  // `buffers` sample buffers are kept, one per position of the unit window (unit_window.h):
+  // unit k writes to buffer k % buffers, so at most `buffers` units may be unfinished at once.
+  FilmAccumulator(const UnitGrid& grid, int width, int height, size_t buffers);
+
+  // Where unit k writes its samples: (sample - sample_begin) * pixel_count + local_pixel.
+  Rgb* buffer(size_t unit);
+  // Unit k has finished writing its buffer; adds it (and any parked successors of its tile) to
+  // the sums, or parks it. Thread-safe; call it before the window learns the unit finished.
+  void add(size_t unit);
+  // Mean and variance of the mean per pixel, once every unit has been added.
+  Film resolve(uint32_t spp) const;
+
+ private:
+  struct Tile {
+    std::mutex mutex;
+    uint32_t next_chunk = 0;     // chunks before it are in the sums
+    std::vector<size_t> parked;  // finished units waiting for an earlier chunk
+  };
+  void add_to_sums(size_t unit);
+
+  const UnitGrid grid_;
+  const int width_, height_;
+  const size_t buffer_count_, buffer_size_;
+  std::vector<Rgb> buffers_;
+  std::unique_ptr<Tile[]> tiles_;
+  std::vector<double> sum_, sum_sq_;  // 3 per pixel
+};
+
+}  // namespace snee

@@ -1,0 +1,53 @@
+// The render's work units in the order they are handed out: sample chunk by sample chunk, and
+// within a chunk tile by tile in raster order. Unit k is tile k % tiles of chunk k / tiles, a
+// pure function of image size, tile size, spp and chunk size, never of the thread count.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "scheduler/work_unit.h"
+
+namespace snee {
+
+class UnitGrid {
+ public:
+  UnitGrid(int width, int height, int tile_size, uint32_t spp, uint32_t samples_per_unit)
+      : spp_(spp), samples_per_unit_(samples_per_unit) {
+    for (int y = 0; y < height; y += tile_size) {
+      for (int x = 0; x < width; x += tile_size) {
+        tiles_.push_back(
+            {x, y, std::min(x + tile_size, width), std::min(y + tile_size, height), 0, 0});
+      }
+    }
+    chunks_ = (spp + samples_per_unit - 1) / samples_per_unit;
+  }
+
+  size_t size() const { return tiles_.size() * chunks_; }
+  size_t tile_count() const { return tiles_.size(); }
+  size_t tile_of(size_t unit) const { return unit % tiles_.size(); }
+  uint32_t chunk_of(size_t unit) const { return static_cast<uint32_t>(unit / tiles_.size()); }
+  uint32_t samples_per_unit() const { return samples_per_unit_; }
+  // The most samples (pixels times sample indices) any unit holds.
+  size_t max_unit_samples() const {
+    size_t most = 0;
+    for (const WorkUnit& t : tiles_) most = std::max(most, static_cast<size_t>(t.pixel_count()));
+    return most * std::min(spp_, samples_per_unit_);
+  }
+
+  WorkUnit unit(size_t k) const {
+    WorkUnit u = tiles_[tile_of(k)];
+    u.sample_begin = chunk_of(k) * samples_per_unit_;
+    u.sample_end = std::min(spp_, u.sample_begin + samples_per_unit_);
+    return u;
+  }
+
+ private:
+  std::vector<WorkUnit> tiles_;
+  uint32_t spp_, samples_per_unit_;
+  size_t chunks_;
+};
+
+}  // namespace snee

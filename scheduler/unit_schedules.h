@@ -1,0 +1,39 @@
+// Running a render's work units under a schedule (schedule.h). Each is called inside the
+// render's task arena, takes units from the window in order and hands each finished unit's
+// samples to the film, then to the window.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include "scheduler/film_accumulator.h"
+#include "scheduler/unit_grid.h"
+#include "scheduler/unit_progress.h"
+#include "scheduler/unit_window.h"
+#include "scheduler/work_unit.h"
+
+namespace snee {
+
+// What every schedule works on: the units, the order they are handed out in, and the film.
+struct UnitSource {
+  const UnitGrid& grid;
+  UnitWindow& window;
+  FilmAccumulator& film;
+  UnitProgress& progress;
+};
+
+using ThreadWorkspaces = tbb::enumerable_thread_specific<UnitWorkspace>;
+
+// Local wavefront and megakernel: each of `threads` workers takes a unit, runs its whole stage
+// loop in the worker's own workspace (the megakernel's has one slot) and takes the next.
+void run_units_depth_first(const KernelContext& ctx, const UnitSource& source, int threads,
+                           ThreadWorkspaces& workspaces);
+
+// Global: every lane holds a unit; each stage runs over all lanes (in parallel) before the next
+// stage starts, and a lane whose unit is done takes the next one.
+void run_units_breadth_first(const KernelContext& ctx, const UnitSource& source,
+                             const std::vector<std::unique_ptr<UnitWorkspace>>& lanes);
+
+}  // namespace snee
