@@ -129,6 +129,7 @@ int ScaleCommand::run() const {
          {"speedup", speedup},
          {"efficiency", efficiency},
          {"work_efficiency", work_efficiency},
+         {"stage_seconds", stage_seconds_json(s)},
          {"peak_memory_mib", m.peak_memory_mib()}});
   }
 

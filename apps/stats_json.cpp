@@ -15,6 +15,13 @@ nlohmann::ordered_json ray_counts_json(const RenderStats& stats) {
   return rays;
 }
 
+nlohmann::ordered_json stage_seconds_json(const RenderStats& stats) {
+  nlohmann::ordered_json stages = nlohmann::ordered_json::object();
+  for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
+    stages[stage_name(static_cast<Stage>(s))] = stats.stage_seconds[s];
+  return stages;
+}
+
 nlohmann::ordered_json simd_lanes_json(const RenderStats& stats) {
   const auto lanes = [](const LaneCount& c) {
     return nlohmann::ordered_json{
@@ -31,10 +38,6 @@ nlohmann::ordered_json simd_lanes_json(const RenderStats& stats) {
 nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
                                   const RenderResult& result) {
   const RenderStats& stats = result.stats;
-  nlohmann::ordered_json stages = nlohmann::ordered_json::object();
-  for (int s = 0; s < static_cast<int>(Stage::kCount); ++s)
-    stages[stage_name(static_cast<Stage>(s))] = stats.stage_seconds[s];
-
   nlohmann::ordered_json snee = nlohmann::ordered_json::object();
   for (int c = 0; c < kSneeCounterCount; ++c)
     snee[snee_counter_name(static_cast<SneeCounter>(c))] = stats.snee[c];
@@ -55,7 +58,7 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"seconds", stats.seconds},
       {"sampling_seconds", stats.sampling_seconds},
       {"sampling_cpu_seconds", stats.sampling_cpu_seconds},
-      {"stage_seconds", stages},
+      {"stage_seconds", stage_seconds_json(stats)},
       {"rays", ray_counts_json(stats)},
       {"paths", stats.paths},
       {"mrays_per_second", stats.mrays_per_second()},

@@ -13,6 +13,9 @@ namespace snee {
 // Rays traced by kind (camera, extension, shadow, probe) and their total.
 nlohmann::ordered_json ray_counts_json(const RenderStats& stats);
 
+// Seconds in each stage, summed over threads.
+nlohmann::ordered_json stage_seconds_json(const RenderStats& stats);
+
 // SIMD width and lane occupancy, overall and per batched stage kernel.
 nlohmann::ordered_json simd_lanes_json(const RenderStats& stats);
 
