@@ -14,12 +14,18 @@ void run_units_depth_first(const KernelContext& ctx, const UnitSource& source, i
       [&](int) {
         set_flush_to_zero();
         UnitWorkspace& ws = workspaces.local();
-        while (const std::optional<size_t> k = source.window.take(/*wait=*/true)) {
-          const WorkUnit unit = source.grid.unit(*k);
-          run_work_unit(ctx, unit, ws, source.film.buffer(*k));
-          source.film.add(*k);
-          source.window.finish(*k);
-          source.progress.unit_finished(ws);
+        try {
+          while (const std::optional<size_t> k = source.window.take(/*wait=*/true)) {
+            const WorkUnit unit = source.grid.unit(*k);
+            run_work_unit(ctx, unit, ws, source.film.buffer(*k));
+            source.film.add(*k);
+            source.window.finish(*k);
+            source.progress.unit_finished(ws);
+          }
+        } catch (...) {
+          // The failed unit never finishes; without this the others would wait for it.
+          source.window.abort();
+          throw;
         }
       },
       tbb::simple_partitioner());

@@ -10,8 +10,8 @@ UnitWindow::UnitWindow(size_t units, size_t lead) : units_(units), lead_(lead), 
 
 std::optional<size_t> UnitWindow::take(bool wait) {
   std::unique_lock<std::mutex> lock(mutex_);
-  if (wait) window_moved_.wait(lock, [&] { return next_ == units_ || !full(); });
-  if (next_ == units_ || full()) return std::nullopt;
+  if (wait) window_moved_.wait(lock, [&] { return aborted_ || next_ == units_ || !full(); });
+  if (aborted_ || next_ == units_ || full()) return std::nullopt;
   return next_++;
 }
 
@@ -26,6 +26,14 @@ void UnitWindow::finish(size_t unit) {
       finished_[oldest_unfinished_ % lead_] = 0;
       ++oldest_unfinished_;
     }
+  }
+  window_moved_.notify_all();
+}
+
+void UnitWindow::abort() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    aborted_ = true;
   }
   window_moved_.notify_all();
 }

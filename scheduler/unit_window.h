@@ -22,6 +22,9 @@ class UnitWindow {
   std::optional<size_t> take(bool wait);
   // Called once per unit taken, after its samples are in the film.
   void finish(size_t unit);
+  // A unit failed and will never finish: hands out nothing more and wakes every waiting take,
+  // so the other threads stop instead of waiting for it.
+  void abort();
 
  private:
   bool full() const { return next_ == oldest_unfinished_ + lead_; }
@@ -29,6 +32,7 @@ class UnitWindow {
   const size_t units_, lead_;
   std::mutex mutex_;
   std::condition_variable window_moved_;
+  bool aborted_ = false;
   size_t next_ = 0;               // units handed out so far
   size_t oldest_unfinished_ = 0;  // every unit before it has finished
   std::vector<char> finished_;    // by unit % lead, for units in [oldest_unfinished_, next_)

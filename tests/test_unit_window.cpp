@@ -58,6 +58,17 @@ TEST(UnitWindow, AWaitingTakeWakesWhenTheOldestUnitFinishes) {
   EXPECT_EQ(waiting.get(), 1u);
 }
 
+TEST(UnitWindow, AbortStopsHandingOutAndWakesWaitingTakes) {
+  UnitWindow window(5, 1);
+  ASSERT_EQ(window.take(true), 0u);
+  auto waiting = std::async(std::launch::async, [&] { return window.take(true); });
+  EXPECT_EQ(waiting.wait_for(std::chrono::milliseconds(50)), std::future_status::timeout);
+  window.abort();  // unit 0 will never finish
+  ASSERT_EQ(waiting.wait_for(std::chrono::seconds(10)), std::future_status::ready);
+  EXPECT_EQ(waiting.get(), std::nullopt);
+  EXPECT_EQ(window.take(false), std::nullopt);
+}
+
 // Random interleavings of takes and finishes: the lead bound holds after every step and every
 // unit is handed out exactly once.
 TEST(UnitWindow, TheLeadBoundHoldsUnderRandomFinishOrders) {
