@@ -133,7 +133,7 @@ int CompareCommand::run() const {
     ro.seed = seed_ + kReferenceSeedOffset;
     RenderResult r = render_logged(scene, ro, quiet_, "reference");
     reference = std::move(r.film);
-    reference.meta = {ro.spp, ro.integrator, ro.seed, r.stats.seconds, name};
+    reference.meta.scene = name;
     write_exr(reference, (dir / "reference.exr").string());
   }
 
@@ -152,7 +152,7 @@ int CompareCommand::run() const {
     e.film = std::move(r.film);
     e.stats = r.stats;
     e.spp = o.spp;
-    e.film.meta = {o.spp, integrator, o.seed, r.stats.seconds, name};
+    e.film.meta.scene = name;
     e.error = image_error(e.film, reference);
     e.efficiency = e.error.relative_mse > 0 ? 1.0 / (e.error.relative_mse * e.stats.seconds) : 0;
     e.efficiency_trimmed = e.error.relative_mse_trimmed > 0

@@ -9,6 +9,7 @@
 #include <string>
 #include <system_error>
 
+#include "apps/interrupt_request.h"
 #include "apps/progress_bar.h"
 #include "apps/resolution.h"
 #include "apps/stats_json.h"
@@ -25,6 +26,24 @@ std::string output_name(const Scene& scene, const std::string& spec) {
   const std::string builtin = "builtin:";
   if (spec.starts_with(builtin)) return spec.substr(builtin.size());
   return fs::path(spec).stem().string();
+}
+
+// Replaces the EXR and its PNG preview as a whole: each is written beside its final name and
+// renamed over it, so a reader (or a render stopped mid-write) never sees a half-written file.
+void write_images(const Film& film, const fs::path& exr, const fs::path& png) {
+  const auto replace = [](const fs::path& path, const auto& write) {
+    fs::path partial = path;
+    partial.replace_extension(".partial" + path.extension().string());
+    write(partial.string());
+    std::error_code ec;
+    fs::rename(partial, path, ec);
+    if (ec) {
+      throw std::runtime_error("cannot replace '" + path.string() + "' with '" + partial.string() +
+                               "': " + ec.message());
+    }
+  };
+  replace(exr, [&](const std::string& p) { write_exr(film, p); });
+  replace(png, [&](const std::string& p) { write_preview(film, p); });
 }
 
 // CLI11's own range checks print the bounds as doubles with hundreds of digits.
@@ -94,6 +113,10 @@ RenderCommand::RenderCommand(CLI::App& parent)
                "megakernel (one path at a time, the comparison twin), local (wavefront per work "
                "unit) or global (each stage over many units)")
       ->check(CLI::IsMember({"megakernel", "local", "global"}))
+      ->capture_default_str();
+  c.add_option("--checkpoint", checkpoint_seconds_,
+               "Also write the image so far every SECONDS while rendering (0: only at the end)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   c.add_flag("-q,--quiet", quiet_, "No progress output while rendering");
 
@@ -166,11 +189,20 @@ int RenderCommand::run() const {
   if (!stats_.empty()) create_parent_directory(stats_);
 
   ProgressBar bar(stderr);
-  ProgressCallback progress;
-  if (!quiet_) progress = [&bar](const Progress& p) { bar.update(p); };
+  RenderHooks hooks;
+  if (!quiet_) hooks.progress = [&bar](const Progress& p) { bar.update(p); };
+  if (checkpoint_seconds_ > 0) {
+    hooks.checkpoint_seconds = checkpoint_seconds_;
+    hooks.checkpoint = [&](Film film) {
+      film.meta.scene = name;
+      write_images(film, exr, png);
+    };
+  }
+  const InterruptRequest interrupt;
+  hooks.stop_requested = [&interrupt] { return interrupt.requested(); };
   RenderResult result;
   try {
-    result = render(scene, options, progress);
+    result = render(scene, options, hooks);
   } catch (const std::invalid_argument& e) {
     bar.finish();
     throw std::invalid_argument("cannot render '" + name + "' with integrator '" +
@@ -178,10 +210,20 @@ int RenderCommand::run() const {
   }
   bar.finish();
 
-  result.film.meta = {options.spp, options.integrator, options.seed, result.stats.seconds, name};
-  write_exr(result.film, exr.string());
-  write_preview(result.film, png.string());
+  result.film.meta.scene = name;
+  write_images(result.film, exr, png);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
+  if (!result.complete) {
+    std::printf(
+        "interrupted %s after %llu of %lld pixel samples (every pixel has at least %d "
+        "of %d spp)\n",
+        name.c_str(), static_cast<unsigned long long>(result.stats.paths),
+        static_cast<long long>(result.film.width) * result.film.height * options.spp,
+        result.film.meta.min_spp, options.spp);
+    std::printf("wrote %s\nwrote %s\n", exr.c_str(), png.c_str());
+    if (!stats_.empty()) std::printf("wrote %s\n", stats_.c_str());
+    return interrupt.exit_status();
+  }
 
   std::printf("rendered %s: %s, %dx%d, %d spp, %.2f s, %.1f Mrays/s\n", name.c_str(),
               options.integrator.c_str(), result.film.width, result.film.height, options.spp,

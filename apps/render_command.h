@@ -1,5 +1,7 @@
 // `snee render`: loads a scene, renders it with the scene's settings overridden by the command
-// line, and writes the EXR, a PNG preview beside it and optionally a statistics JSON.
+// line, and writes the EXR, a PNG preview beside it and optionally a statistics JSON. With
+// --checkpoint it also writes the image so far while rendering; on Ctrl-C (SIGINT) or SIGTERM
+// it stops, writes the image so far and exits with 128 + the signal number.
 #pragma once
 
 #include <string>
@@ -27,6 +29,7 @@ class RenderCommand {
   std::string output_;
   std::string stats_;
   std::string resolution_;
+  double checkpoint_seconds_ = 0;
   bool quiet_ = false;
   std::string snee_probe_ = "uniform";
   std::string snee_heuristic_ = "balance";

@@ -11,7 +11,8 @@
 namespace snee {
 
 struct FilmMetadata {
-  int spp = 0;
+  int spp = 0;      // samples per pixel the render was asked for
+  int min_spp = 0;  // the fewest samples any pixel holds: spp unless the render was cut short
   std::string integrator;
   uint32_t seed = 0;
   double render_seconds = 0;

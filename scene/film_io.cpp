@@ -3,6 +3,7 @@
 //
 // EXR layout: channels "R", "G", "B" (mean radiance) and "variance.R", "variance.G",
 // "variance.B" (variance of the mean), all FLOAT; metadata attributes snee:spp (int),
+// snee:min_spp (int, the fewest samples of any pixel: below snee:spp in a partial image),
 // snee:integrator (string), snee:seed (string, decimal: EXR has no unsigned 32-bit attribute),
 // snee:render_seconds (double), snee:scene (string), snee:version (string) and "Software".
 #include <array>
@@ -74,6 +75,7 @@ void write_exr(const Film& film, const std::string& path) {
   spec.attribute("Software", "snee " SNEE_VERSION);
   spec.attribute("snee:version", SNEE_VERSION);
   spec.attribute("snee:spp", film.meta.spp);
+  spec.attribute("snee:min_spp", film.meta.min_spp);
   spec.attribute("snee:integrator", film.meta.integrator);
   spec.attribute("snee:seed", std::to_string(film.meta.seed));
   spec.attribute("snee:render_seconds", OIIO::TypeDesc::DOUBLE, &film.meta.render_seconds);
@@ -134,6 +136,8 @@ Film read_exr(const std::string& path) {
   }
 
   film.meta.spp = spec.get_int_attribute("snee:spp");
+  // Images written before min_spp existed were always complete.
+  film.meta.min_spp = spec.get_int_attribute("snee:min_spp", film.meta.spp);
   film.meta.integrator = spec.get_string_attribute("snee:integrator");
   const std::string_view seed = spec.get_string_attribute("snee:seed", "0");
   if (std::from_chars(seed.data(), seed.data() + seed.size(), film.meta.seed).ec != std::errc())

@@ -41,7 +41,7 @@ void run_units_breadth_first(const KernelContext& ctx, const UnitSource& source,
       }
       source.film.add(lane_unit_index[lane]);
       source.window.finish(lane_unit_index[lane]);
-      source.progress.unit_finished(*lanes[lane]);
+      if (!source.progress.unit_finished(*lanes[lane])) source.window.abort();
       idle.push_back(lane);
     }
     busy.resize(kept);

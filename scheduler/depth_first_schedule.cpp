@@ -20,7 +20,7 @@ void run_units_depth_first(const KernelContext& ctx, const UnitSource& source, i
             run_work_unit(ctx, unit, ws, source.film.buffer(*k));
             source.film.add(*k);
             source.window.finish(*k);
-            source.progress.unit_finished(ws);
+            if (!source.progress.unit_finished(ws)) source.window.abort();
           }
         } catch (...) {
           // The failed unit never finishes; without this the others would wait for it.

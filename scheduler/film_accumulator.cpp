@@ -58,23 +58,37 @@ void FilmAccumulator::add_to_sums(size_t k) {
   }
 }
 
-Film FilmAccumulator::resolve(uint32_t spp) const {
+Film FilmAccumulator::resolve() const {
   Film film;
   film.width = width_;
   film.height = height_;
   const size_t pixel_count = static_cast<size_t>(width_) * height_;
-  film.mean.resize(pixel_count);
-  film.variance_of_mean.resize(pixel_count);
-  const double n = spp;
-  for (size_t p = 0; p < pixel_count; ++p) {
-    for (int c = 0; c < 3; ++c) {
-      const double mean = sum_[3 * p + c] / n;
-      const double var =
-          spp > 1 ? std::max(0.0, (sum_sq_[3 * p + c] - n * mean * mean) / (n - 1)) : 0.0;
-      film.mean[p][c] = static_cast<float>(mean);
-      film.variance_of_mean[p][c] = static_cast<float>(var / n);
+  film.mean.assign(pixel_count, Rgb(0.0f));
+  film.variance_of_mean.assign(pixel_count, Rgb(0.0f));
+  uint32_t min_spp = grid_.spp();
+  for (size_t t = 0; t < grid_.tile_count(); ++t) {
+    Tile& tile = tiles_[t];
+    std::lock_guard<std::mutex> lock(tile.mutex);
+    const uint32_t spp = std::min(grid_.spp(), tile.next_chunk * grid_.samples_per_unit());
+    min_spp = std::min(min_spp, spp);
+    if (spp == 0) continue;
+    const WorkUnit u = grid_.unit(t);
+    const double n = spp;
+    for (int y = u.y0; y < u.y1; ++y) {
+      for (int x = u.x0; x < u.x1; ++x) {
+        const size_t p = static_cast<size_t>(y) * width_ + x;
+        for (int c = 0; c < 3; ++c) {
+          const double mean = sum_[3 * p + c] / n;
+          const double var =
+              spp > 1 ? std::max(0.0, (sum_sq_[3 * p + c] - n * mean * mean) / (n - 1)) : 0.0;
+          film.mean[p][c] = static_cast<float>(mean);
+          film.variance_of_mean[p][c] = static_cast<float>(var / n);
+        }
+      }
     }
   }
+  film.meta.spp = static_cast<int>(grid_.spp());
+  film.meta.min_spp = static_cast<int>(min_spp);
   return film;
 }
 

@@ -28,8 +28,11 @@ class FilmAccumulator {
   // Unit k has finished writing its buffer; adds it (and any parked successors of its tile) to
   // the sums, or parks it. Thread-safe; call it before the window learns the unit finished.
   void add(size_t unit);
-  // Mean and variance of the mean per pixel, once every unit has been added.
-  Film resolve(uint32_t spp) const;
+  // Mean and variance of the mean per pixel over the samples added so far (a tile's chunks up
+  // to its first missing one), and meta.min_spp. Once every unit is in, that is the image; before,
+  // a snapshot in which every pixel is an unbiased estimate with its own sample count.
+  // Thread-safe: locks one tile at a time.
+  Film resolve() const;
 
  private:
   struct Tile {

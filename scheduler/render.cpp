@@ -84,8 +84,7 @@ void add_workspace_stats(const UnitWorkspace& ws, KernelCounters& counters, Rend
 
 }  // namespace
 
-RenderResult render(const Scene& scene, const RenderOptions& options,
-                    const ProgressCallback& progress) {
+RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks) {
   validate(scene, options);
   const Integrator integrator = parse_integrator(options.integrator);
   const Schedule schedule = parse_schedule(options.schedule);
@@ -110,7 +109,13 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
   const size_t lead = std::min(grid.size(), kUnitsInFlightPerThread * threads);
   UnitWindow window(grid.size(), lead);
   FilmAccumulator film_sums(grid, width, height, lead);
-  UnitProgress unit_progress(progress, static_cast<int64_t>(width) * height * spp, start);
+  FilmMetadata meta;
+  meta.spp = options.spp;
+  meta.integrator = integrator_name(integrator);
+  meta.seed = options.seed;
+  meta.scene = scene.name;
+  UnitProgress unit_progress(hooks, static_cast<int64_t>(width) * height * spp, start, film_sums,
+                             meta);
   const UnitSource source{grid, window, film_sums, unit_progress};
 
   // The megakernel is the same loop over one-slot workspaces: one path at a time per thread.
@@ -131,8 +136,12 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
   });
 
   RenderResult result;
-  result.film = film_sums.resolve(spp);
+  result.film = film_sums.resolve();
   Film& film = result.film;
+  result.complete = film.meta.min_spp == options.spp;
+  const int min_spp = film.meta.min_spp;
+  film.meta = meta;
+  film.meta.min_spp = min_spp;
   RenderStats& stats = result.stats;
   const auto end = std::chrono::steady_clock::now();
   stats.seconds = std::chrono::duration<double>(end - start).count();
@@ -154,11 +163,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options,
   stats.snee = counters.snee;
   stats.simd_lanes = counters.lanes;
   stats.simd_width = simd::kLanes;
-  film.meta.spp = options.spp;
-  film.meta.integrator = integrator_name(integrator);
-  film.meta.seed = options.seed;
   film.meta.render_seconds = stats.seconds;
-  film.meta.scene = scene.name;
   return result;
 }
 

@@ -53,6 +53,19 @@ struct Progress {
 };
 using ProgressCallback = std::function<void(const Progress&)>;
 
+// What a caller can watch and steer while a render runs; every member is optional. The
+// callbacks run on whichever worker just finished a work unit, one checkpoint at a time.
+struct RenderHooks {
+  ProgressCallback progress;  // after every finished unit
+  // The film so far (FilmAccumulator::resolve: each pixel over its own samples, meta.min_spp
+  // the fewest), every `checkpoint_seconds` of wall clock; the other workers keep rendering.
+  std::function<void(const Film&)> checkpoint;
+  double checkpoint_seconds = 0;
+  // Asked after every finished unit; once it says true, no unit starts, the units in flight
+  // finish, and render() returns the film so far.
+  std::function<bool()> stop_requested;
+};
+
 struct RenderStats {
   double seconds = 0;
   std::array<uint64_t, static_cast<int>(RayKind::kCount)> rays{};
@@ -76,10 +89,11 @@ struct RenderStats {
 struct RenderResult {
   Film film;
   RenderStats stats;
+  bool complete = true;  // false when stop_requested cut the render short
 };
 
 // Throws std::invalid_argument for an unknown integrator or invalid options.
 RenderResult render(const Scene& scene, const RenderOptions& options,
-                    const ProgressCallback& progress = {});
+                    const RenderHooks& hooks = {});
 
 }  // namespace snee

@@ -29,7 +29,9 @@ class UnitGrid {
   size_t tile_count() const { return tiles_.size(); }
   size_t tile_of(size_t unit) const { return unit % tiles_.size(); }
   uint32_t chunk_of(size_t unit) const { return static_cast<uint32_t>(unit / tiles_.size()); }
+  uint32_t spp() const { return spp_; }
   uint32_t samples_per_unit() const { return samples_per_unit_; }
+  uint32_t chunk_count() const { return static_cast<uint32_t>(chunks_); }
   // The most samples (pixels times sample indices) any unit holds.
   size_t max_unit_samples() const {
     size_t most = 0;

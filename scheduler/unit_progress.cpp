@@ -2,19 +2,44 @@
 
 namespace snee {
 
-void UnitProgress::unit_finished(const UnitWorkspace& ws) {
+UnitProgress::UnitProgress(const RenderHooks& hooks, int64_t samples_total,
+                           std::chrono::steady_clock::time_point start, const FilmAccumulator& film,
+                           const FilmMetadata& meta)
+    : hooks_(hooks), samples_total_(samples_total), start_(start), film_(film), meta_(meta) {}
+
+double UnitProgress::elapsed_seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+bool UnitProgress::unit_finished(const UnitWorkspace& ws) {
   const uint64_t rays = rays_done_ += rays_traced(ws.counters) - ws.rays_at_start;
   const int64_t done = samples_done_ += static_cast<int64_t>(ws.unit->sample_count());
-  if (!callback_) return;
-  Progress p;
-  p.samples_done = done;
-  p.samples_total = samples_total_;
-  p.fraction = static_cast<double>(done) / static_cast<double>(samples_total_);
-  p.elapsed_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  p.mrays_per_second =
-      p.elapsed_seconds > 0 ? static_cast<double>(rays) / p.elapsed_seconds * 1e-6 : 0;
-  callback_(p);
+  if (hooks_.progress) {
+    Progress p;
+    p.samples_done = done;
+    p.samples_total = samples_total_;
+    p.fraction = static_cast<double>(done) / static_cast<double>(samples_total_);
+    p.elapsed_seconds = elapsed_seconds();
+    p.mrays_per_second =
+        p.elapsed_seconds > 0 ? static_cast<double>(rays) / p.elapsed_seconds * 1e-6 : 0;
+    hooks_.progress(p);
+  }
+  if (hooks_.checkpoint && hooks_.checkpoint_seconds > 0) checkpoint_if_due();
+  return !(hooks_.stop_requested && hooks_.stop_requested());
+}
+
+void UnitProgress::checkpoint_if_due() {
+  std::unique_lock<std::mutex> lock(checkpoint_mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) return;
+  const double now = elapsed_seconds();
+  if (now - last_checkpoint_seconds_ < hooks_.checkpoint_seconds) return;
+  last_checkpoint_seconds_ = now;
+  Film film = film_.resolve();
+  const int min_spp = film.meta.min_spp;
+  film.meta = meta_;
+  film.meta.min_spp = min_spp;
+  film.meta.render_seconds = now;
+  hooks_.checkpoint(film);
 }
 
 }  // namespace snee

@@ -1,10 +1,14 @@
-// Progress of a render, advanced by whichever worker finishes a work unit.
+// What happens after every finished work unit, on the worker that finished it: progress
+// reports, checkpoints of the film, and the question whether to stop (render.h, RenderHooks).
 #pragma once
 
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <mutex>
 
+#include "scene/film.h"
+#include "scheduler/film_accumulator.h"
 #include "scheduler/render.h"
 #include "scheduler/work_unit.h"
 
@@ -12,18 +16,27 @@ namespace snee {
 
 class UnitProgress {
  public:
-  UnitProgress(const ProgressCallback& callback, int64_t samples_total,
-               std::chrono::steady_clock::time_point start)
-      : callback_(callback), samples_total_(samples_total), start_(start) {}
-  // `ws` has just finished its current unit; thread-safe.
-  void unit_finished(const UnitWorkspace& ws);
+  // `meta` is stamped on every checkpoint (with the time so far and its min_spp).
+  UnitProgress(const RenderHooks& hooks, int64_t samples_total,
+               std::chrono::steady_clock::time_point start, const FilmAccumulator& film,
+               const FilmMetadata& meta);
+  // `ws` has just finished its current unit and the film holds it. Returns false once the
+  // caller asked to stop. Thread-safe.
+  bool unit_finished(const UnitWorkspace& ws);
 
  private:
-  const ProgressCallback& callback_;
-  int64_t samples_total_;
-  std::chrono::steady_clock::time_point start_;
+  double elapsed_seconds() const;
+  void checkpoint_if_due();
+
+  const RenderHooks& hooks_;
+  const int64_t samples_total_;
+  const std::chrono::steady_clock::time_point start_;
+  const FilmAccumulator& film_;
+  const FilmMetadata meta_;
   std::atomic<int64_t> samples_done_{0};
   std::atomic<uint64_t> rays_done_{0};
+  std::mutex checkpoint_mutex_;  // held while a checkpoint is taken; others skip, never wait
+  double last_checkpoint_seconds_ = 0;
 };
 
 }  // namespace snee

@@ -22,8 +22,8 @@ class UnitWindow {
   std::optional<size_t> take(bool wait);
   // Called once per unit taken, after its samples are in the film.
   void finish(size_t unit);
-  // A unit failed and will never finish: hands out nothing more and wakes every waiting take,
-  // so the other threads stop instead of waiting for it.
+  // Hands out nothing more and wakes every waiting take: the render was asked to stop, or a
+  // unit failed and will never finish (the others must not wait for it).
   void abort();
 
  private:

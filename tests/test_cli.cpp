@@ -1,6 +1,12 @@
 // The snee binary as a user meets it: help, usage errors, scene errors and a tiny render whose
 // outputs are read back.
+#include <fcntl.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <thread>
 
 #include <cstdlib>
 #include <filesystem>
@@ -71,7 +77,7 @@ TEST_F(CliTest, RenderHelpListsEveryOption) {
   for (const char* option :
        {"SCENE", "builtin:", "--spp", "--threads", "--seed", "--integrator", "-o", "--output",
         "--stats", "--resolution", "--max-depth", "--queue-capacity", "--tile-size",
-        "--samples-per-unit", "--schedule", "--quiet"})
+        "--samples-per-unit", "--schedule", "--checkpoint", "--quiet"})
     EXPECT_TRUE(contains(run.output, option)) << option << " missing from:\n" << run.output;
 }
 
@@ -171,6 +177,60 @@ TEST_F(CliTest, TinyRenderWritesExrPngAndStats) {
   for (const char* kind : {"camera", "extension", "shadow", "probe", "total"})
     EXPECT_TRUE(stats["rays"].contains(kind)) << kind;
   EXPECT_GE(stats["rays"]["camera"].get<uint64_t>(), 16u * 16u * 2u);
+}
+
+TEST_F(CliTest, CheckpointedRenderEndsWithTheCompleteImageAndNoPartialFiles) {
+  const Outcome run = snee(
+      "render builtin:furnace-sphere --resolution 16x16 --spp 64 --samples-per-unit 1 "
+      "--tile-size 4 --checkpoint 0.000001 -o out/c.exr --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const Film film = read_exr(path("out/c.exr"));
+  EXPECT_EQ(film.meta.spp, 64);
+  EXPECT_EQ(film.meta.min_spp, 64);
+  for (const auto& entry : fs::directory_iterator(path("out"))) {
+    EXPECT_EQ(entry.path().string().find(".partial"), std::string::npos) << entry.path();
+  }
+}
+
+// Ctrl-C in the middle of a long render: the units in flight finish, the image so far is
+// written, and the exit status is the shell's 128 + SIGINT.
+TEST_F(CliTest, InterruptWritesTheImageSoFar) {
+  const std::string exr = path("long.exr");
+  const std::string log = path("long.txt");
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(fd, 1);
+    dup2(fd, 2);
+    execl(SNEE_BINARY, SNEE_BINARY, "render", "builtin:default", "--resolution", "64x48", "--spp",
+          "1000000", "--checkpoint", "0.2", "-o", exr.c_str(), "--quiet", nullptr);
+    _exit(127);
+  }
+  // The first checkpoint shows the render (and so the signal handler) has started.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(exr) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_TRUE(fs::exists(exr)) << read_file(log);
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  pid_t done = 0;
+  while ((done = waitpid(pid, &status, WNOHANG)) == 0 &&
+         std::chrono::steady_clock::now() < deadline + std::chrono::seconds(30))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  if (done == 0) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    FAIL() << "snee did not stop after SIGINT: " << read_file(log);
+  }
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status) << ": "
+                                 << read_file(log);
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT) << read_file(log);
+  EXPECT_TRUE(contains(read_file(log), "interrupted default after")) << read_file(log);
+  const Film film = read_exr(exr);
+  EXPECT_EQ(film.meta.spp, 1000000);
+  EXPECT_LT(film.meta.min_spp, 1000000);
+  EXPECT_GT(film.meta.render_seconds, 0.0);
 }
 
 TEST_F(CliTest, DefaultOutputIsNamedAfterTheScene) {

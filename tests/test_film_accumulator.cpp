@@ -35,7 +35,7 @@ Film reference_film(int width, int height, uint32_t spp) {
     for (int p = 0; p < width * height; ++p) samples[s * width * height + p] = sample_value(p, s);
   }
   one_unit.add(0);
-  return one_unit.resolve(spp);
+  return one_unit.resolve();
 }
 
 void fill(const UnitGrid& grid, size_t k, int width, Rgb* buffer) {
@@ -74,7 +74,7 @@ TEST(FilmAccumulator, UnitsAddedInAnyOrderGiveTheSampleOrderSums) {
       fill(grid, k, width, film.buffer(k));
       film.add(k);
     }
-    EXPECT_TRUE(same_bits(reference, film.resolve(spp))) << "trial " << trial;
+    EXPECT_TRUE(same_bits(reference, film.resolve())) << "trial " << trial;
   }
   // The test would notice an accumulator that ignored the order: summing these samples in
   // reverse index order gives other bits.
@@ -122,8 +122,44 @@ TEST(FilmAccumulator, ReusedBuffersUnderTheWindowKeepTheSums) {
         running.erase(it);
       }
     }
-    EXPECT_TRUE(same_bits(reference, film.resolve(spp))) << "lead " << lead;
+    EXPECT_TRUE(same_bits(reference, film.resolve())) << "lead " << lead;
   }
+}
+
+// Before every unit is in, each pixel is resolved over its own tile's added samples: the
+// pixels of a tile with k chunks in are bitwise those of a complete k-sample film, and a tile
+// with none is black; min_spp is the fewest.
+TEST(FilmAccumulator, APartialFilmResolvesEachTileOverItsOwnSamples) {
+  const int width = 8, height = 4;
+  const uint32_t spp = 6;
+  const UnitGrid grid(width, height, 4, spp, 2);  // 2 tiles x 3 chunks
+  FilmAccumulator film(grid, width, height, grid.size());
+  // Tile 0 gets chunks 0 and 1 (4 samples); tile 1 only chunk 1, which stays parked.
+  for (const size_t k : {size_t{0}, size_t{2}, size_t{3}}) {
+    fill(grid, k, width, film.buffer(k));
+    film.add(k);
+  }
+  const Film partial = film.resolve();
+  EXPECT_EQ(partial.meta.spp, 6);
+  EXPECT_EQ(partial.meta.min_spp, 0);
+  const Film four = reference_film(width, height, 4);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t p = static_cast<size_t>(y) * width + x;
+      const Rgb expected_mean = x < 4 ? four.mean[p] : Rgb(0.0f);
+      const Rgb expected_variance = x < 4 ? four.variance_of_mean[p] : Rgb(0.0f);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(partial.mean[p][c], expected_mean[c]) << x << "," << y;
+        EXPECT_EQ(partial.variance_of_mean[p][c], expected_variance[c]) << x << "," << y;
+      }
+    }
+  }
+  // Tile 1's chunk 0 arrives: its parked chunk 1 follows, and tile 1 now has 4 samples too.
+  fill(grid, 1, width, film.buffer(1));
+  film.add(1);
+  const Film both = film.resolve();
+  EXPECT_EQ(both.meta.min_spp, 4);
+  EXPECT_TRUE(same_bits(four, both));
 }
 
 }  // namespace

@@ -45,6 +45,7 @@ Film make_film(int width, int height) {
     film.variance_of_mean.push_back(Rgb(1e-9f * std::exp(f * 0.01f), 3.3e-12f, 0.5f + f));
   }
   film.meta.spp = 1234;
+  film.meta.min_spp = 1200;
   film.meta.integrator = "snee";
   film.meta.seed = 4000000000u;
   film.meta.render_seconds = 12.345678901234567;
@@ -72,6 +73,7 @@ TEST_F(FilmIoTest, ExrRoundTripIsBitExact) {
     }
   }
   EXPECT_EQ(back.meta.spp, film.meta.spp);
+  EXPECT_EQ(back.meta.min_spp, film.meta.min_spp);
   EXPECT_EQ(back.meta.integrator, film.meta.integrator);
   EXPECT_EQ(back.meta.seed, film.meta.seed);
   EXPECT_EQ(back.meta.render_seconds, film.meta.render_seconds);
