@@ -47,6 +47,8 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"scene", scene},
       {"integrator", options.integrator},
       {"spp", options.spp},
+      {"complete", result.complete},
+      {"min_spp", result.film.meta.min_spp},
       {"seed", options.seed},
       {"threads", stats.threads},
       {"resolution", {{"width", result.film.width}, {"height", result.film.height}}},

@@ -162,9 +162,10 @@ TEST_F(CliTest, TinyRenderWritesExrPngAndStats) {
   EXPECT_TRUE(fs::is_regular_file(path("out/a.png")));
 
   const auto stats = nlohmann::json::parse(read_file(path("s.json")));
-  for (const char* key : {"version", "scene", "integrator", "spp", "seed", "threads", "resolution",
-                          "seconds", "stage_seconds", "rays", "paths", "mrays_per_second",
-                          "path_state_bytes_per_slot", "schedule", "queue_occupancy", "simd"})
+  for (const char* key :
+       {"version", "scene", "integrator", "spp", "complete", "min_spp", "seed", "threads",
+        "resolution", "seconds", "stage_seconds", "rays", "paths", "mrays_per_second",
+        "path_state_bytes_per_slot", "schedule", "queue_occupancy", "simd"})
     EXPECT_TRUE(stats.contains(key)) << key;
   // The camera kernel started every path: 16 x 16 x 2 active lanes, in whole batches.
   const auto& camera_lanes = stats["simd"]["kernels"]["generate"];
@@ -172,6 +173,8 @@ TEST_F(CliTest, TinyRenderWritesExrPngAndStats) {
   EXPECT_EQ(camera_lanes["lanes_run"].get<uint64_t>() % stats["simd"]["width"].get<uint64_t>(), 0u);
   EXPECT_TRUE(stats["simd"]["kernels"].contains("medium_event"));
   EXPECT_EQ(stats["spp"], 2);
+  EXPECT_EQ(stats["complete"], true);
+  EXPECT_EQ(stats["min_spp"], 2);
   EXPECT_EQ(stats["resolution"]["width"], 16);
   EXPECT_EQ(stats["resolution"]["height"], 16);
   for (const char* kind : {"camera", "extension", "shadow", "probe", "total"})
