@@ -1,17 +1,15 @@
 // The snee command line: parses arguments, dispatches to one subcommand and turns every error
 // into a message and an exit code (1 = failure, 2 = bad scene, CLI11's codes for bad usage).
-#include <cstdio>
-#include <exception>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "apps/bench_command.h"
 #include "apps/compare_command.h"
+#include "apps/error_exit.h"
 #include "apps/render_command.h"
 #include "apps/scale_command.h"
 #include "apps/scenes_command.h"
-#include "scene/scene_loader.h"
 
 int main(int argc, char** argv) {
   CLI::App app("snee: a CPU renderer for translucent objects", "snee");
@@ -31,16 +29,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  try {
+  return snee::run_reporting_errors([&] {
     if (bench.selected()) return bench.run();
     if (scale.selected()) return scale.run();
     if (compare.selected()) return compare.run();
     return render.selected() ? render.run() : scenes.run();
-  } catch (const snee::SceneError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
+  });
 }

@@ -160,7 +160,7 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->group(snee);
 }
 
-int RenderCommand::run() const {
+int RenderCommand::run(const RenderDistribution& distribution) const {
   LoadedScene loaded = load_scene(scene_);
   for (const std::string& warning : loaded.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
@@ -172,6 +172,13 @@ int RenderCommand::run() const {
   options.snee.heuristic =
       snee_heuristic_ == "power" ? MisHeuristic::kPower : MisHeuristic::kBalance;
   options.snee.enabled = parse_strategy_set(snee_strategies_);
+  options.shard = distribution.shard;
+  options.shard_count = distribution.shard_count;
+  // A checkpoint would need every process at once; interrupts still keep what each has done.
+  if (distribution.shard_count > 1 && checkpoint_seconds_ > 0)
+    throw std::invalid_argument(
+        "--checkpoint is not available when the render is split across processes");
+  const bool shows_progress = !quiet_ && distribution.shard == 0;
   if (!given("--spp")) options.spp = scene.render.spp;
   if (!given("--max-depth")) options.max_depth = scene.render.max_depth;
   if (!given("--seed")) options.seed = scene.render.seed;
@@ -190,7 +197,7 @@ int RenderCommand::run() const {
 
   ProgressBar bar(stderr);
   RenderHooks hooks;
-  if (!quiet_) hooks.progress = [&bar](const Progress& p) { bar.update(p); };
+  if (shows_progress) hooks.progress = [&bar](const Progress& p) { bar.update(p); };
   if (checkpoint_seconds_ > 0) {
     hooks.checkpoint_seconds = checkpoint_seconds_;
     hooks.checkpoint = [&](Film film) {
@@ -209,6 +216,7 @@ int RenderCommand::run() const {
                                 options.integrator + "': " + e.what());
   }
   bar.finish();
+  if (distribution.join && !distribution.join(result)) return 0;
 
   result.film.meta.scene = name;
   write_images(result.film, exr, png);

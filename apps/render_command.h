@@ -4,6 +4,7 @@
 // it stops, writes the image so far and exits with 128 + the signal number.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -12,13 +13,22 @@
 
 namespace snee {
 
+// How a render split across processes (apps/mpi/) shares the work: this process renders shard
+// `shard` of `shard_count` (RenderOptions), and `join` gathers every shard's result into one
+// process's, returning false on the processes that write nothing. The default is one process.
+struct RenderDistribution {
+  int shard = 0;
+  int shard_count = 1;
+  std::function<bool(RenderResult&)> join;
+};
+
 class RenderCommand {
  public:
   // Registers the subcommand and its options on `parent`.
   explicit RenderCommand(CLI::App& parent);
   bool selected() const { return command_->parsed(); }
   // Returns the exit code; throws SceneError and other std::exceptions for main to report.
-  int run() const;
+  int run(const RenderDistribution& distribution = {}) const;
 
  private:
   bool given(const std::string& option) const { return command_->count(option) > 0; }

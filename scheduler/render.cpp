@@ -57,6 +57,8 @@ void validate(const Scene& scene, const RenderOptions& o) {
   if (o.queue_capacity < 16) throw std::invalid_argument("queue capacity must be at least 16");
   if (o.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
   if (o.samples_per_unit < 1) throw std::invalid_argument("samples per unit must be at least 1");
+  if (o.shard_count < 1 || o.shard < 0 || o.shard >= o.shard_count)
+    throw std::invalid_argument("shard must be from 0 to shard count - 1");
   if (scene.camera.width < 1 || scene.camera.height < 1) throw std::invalid_argument("empty image");
 }
 
@@ -105,8 +107,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   const int width = scene.camera.width, height = scene.camera.height;
   const uint32_t spp = static_cast<uint32_t>(options.spp);
   const UnitGrid grid(width, height, options.tile_size, spp,
-                      static_cast<uint32_t>(options.samples_per_unit));
-  const size_t lead = std::min(grid.size(), kUnitsInFlightPerThread * threads);
+                      static_cast<uint32_t>(options.samples_per_unit), options.shard,
+                      options.shard_count);
+  // A shard may own no tile at all (more processes than tiles); its window still needs a lead.
+  const size_t lead = std::max<size_t>(1, std::min(grid.size(), kUnitsInFlightPerThread * threads));
   UnitWindow window(grid.size(), lead);
   FilmAccumulator film_sums(grid, width, height, lead);
   FilmMetadata meta;
@@ -114,8 +118,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   meta.integrator = integrator_name(integrator);
   meta.seed = options.seed;
   meta.scene = scene.name;
-  UnitProgress unit_progress(hooks, static_cast<int64_t>(width) * height * spp, start, film_sums,
-                             meta);
+  UnitProgress unit_progress(hooks, grid.sample_count(), start, film_sums, meta);
   const UnitSource source{grid, window, film_sums, unit_progress};
 
   // The megakernel is the same loop over one-slot workspaces: one path at a time per thread.

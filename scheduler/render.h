@@ -41,7 +41,11 @@ struct RenderOptions {
   int tile_size = 16;        // work-unit tile edge in pixels (fixed by image, never by threads)
   int samples_per_unit = 8;  // sample indices per pixel in one work unit
   std::string schedule = "local";  // "megakernel", "local" or "global" (scheduler/schedule.h)
-  SneeOptions snee;                // open choices of docs/snee.md section 7 (integrator "snee")
+  // One process's share of a render split across processes (apps/mpi/): only the tiles whose
+  // raster index is `shard` modulo `shard_count` are rendered, the other pixels stay black.
+  int shard = 0;
+  int shard_count = 1;
+  SneeOptions snee;  // open choices of docs/snee.md section 7 (integrator "snee")
 };
 
 struct Progress {

@@ -1,6 +1,8 @@
 // The render's work units in the order they are handed out: sample chunk by sample chunk, and
 // within a chunk tile by tile in raster order. Unit k is tile k % tiles of chunk k / tiles, a
-// pure function of image size, tile size, spp and chunk size, never of the thread count.
+// pure function of image size, tile size, spp and chunk size, never of the thread count. A
+// shard of a render split across processes keeps only the tiles whose raster index is `shard`
+// modulo `shard_count`.
 #pragma once
 
 #include <algorithm>
@@ -14,10 +16,13 @@ namespace snee {
 
 class UnitGrid {
  public:
-  UnitGrid(int width, int height, int tile_size, uint32_t spp, uint32_t samples_per_unit)
+  UnitGrid(int width, int height, int tile_size, uint32_t spp, uint32_t samples_per_unit,
+           int shard = 0, int shard_count = 1)
       : spp_(spp), samples_per_unit_(samples_per_unit) {
+    int index = 0;
     for (int y = 0; y < height; y += tile_size) {
-      for (int x = 0; x < width; x += tile_size) {
+      for (int x = 0; x < width; x += tile_size, ++index) {
+        if (index % shard_count != shard) continue;
         tiles_.push_back(
             {x, y, std::min(x + tile_size, width), std::min(y + tile_size, height), 0, 0});
       }
@@ -32,6 +37,12 @@ class UnitGrid {
   uint32_t spp() const { return spp_; }
   uint32_t samples_per_unit() const { return samples_per_unit_; }
   uint32_t chunk_count() const { return static_cast<uint32_t>(chunks_); }
+  // Pixel samples of all units together.
+  int64_t sample_count() const {
+    int64_t pixels = 0;
+    for (const WorkUnit& t : tiles_) pixels += t.pixel_count();
+    return pixels * spp_;
+  }
   // The most samples (pixels times sample indices) any unit holds.
   size_t max_unit_samples() const {
     size_t most = 0;

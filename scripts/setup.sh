@@ -9,6 +9,7 @@ packages=(
   cmake make g++ pkg-config
   libembree-dev libopenimageio-dev libtbb-dev libxsimd-dev xtl-dev nlohmann-json3-dev
   libcli11-dev librandom123-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin
   clang-format
 )
 

@@ -8,16 +8,15 @@
 #include <csignal>
 #include <thread>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include "scene/film.h"
+#include "tests/support/command_line.h"
 
 namespace snee {
 namespace {
@@ -30,10 +29,7 @@ struct Outcome {
 };
 
 std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return test::read_text_file(path);
 }
 
 void write_file(const fs::path& path, const std::string& text) {
@@ -54,11 +50,9 @@ class CliTest : public ::testing::Test {
   // Runs `snee ARGS` in the temporary directory, so default outputs land there too.
   Outcome snee(const std::string& args) const {
     const fs::path log = dir_ / "output.txt";
-    const std::string command = "cd '" + dir_.string() + "' && '" SNEE_BINARY "' " + args + " > '" +
-                                log.string() + "' 2>&1 < /dev/null";
-    const int status = std::system(command.c_str());
     Outcome result;
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    result.exit_code =
+        test::run_command("cd '" + dir_.string() + "' && '" SNEE_BINARY "' " + args, log);
     result.output = read_file(log);
     return result;
   }

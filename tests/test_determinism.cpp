@@ -2,6 +2,9 @@
 // count, the queue capacity (batch size), the tile size or how samples are cut into passes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
 #include "tests/support/render_helpers.h"
@@ -46,6 +49,46 @@ TEST_P(Determinism, ThreadsBatchSizesAndTilesGiveIdenticalBytes) {
   RenderOptions other_seed = base;
   other_seed.seed = 4;
   EXPECT_FALSE(test::bitwise_identical(reference, render(scene, other_seed).film));
+}
+
+// A render split into shards (disjoint tile sets, as the processes of a distributed render take
+// them) gives each pixel to one shard, which computes it exactly as a single process would:
+// the shards' films add up to the whole film bit for bit.
+TEST_P(Determinism, ShardsAddUpToTheWholeImage) {
+  Scene scene = load_builtin_scene("bunny-cone-r0.04").scene;
+  scene.camera.width = 40;
+  scene.camera.height = 24;
+  RenderOptions o;
+  o.spp = 3;
+  o.seed = 2;
+  o.integrator = GetParam();
+  o.threads = 2;
+  o.tile_size = 8;  // 15 tiles
+  const Film whole = render(scene, o).film;
+  for (const int shards : {2, 3, 16}) {  // 16: one shard gets no tile
+    Film sum = whole;
+    std::fill(sum.mean.begin(), sum.mean.end(), Rgb(0.0f));
+    std::fill(sum.variance_of_mean.begin(), sum.variance_of_mean.end(), Rgb(0.0f));
+    uint64_t paths = 0;
+    for (int shard = 0; shard < shards; ++shard) {
+      RenderOptions part = o;
+      part.shard = shard;
+      part.shard_count = shards;
+      const RenderResult r = render(scene, part);
+      EXPECT_TRUE(r.complete);
+      paths += r.stats.paths;
+      for (size_t p = 0; p < sum.mean.size(); ++p) {
+        sum.mean[p] += r.film.mean[p];
+        sum.variance_of_mean[p] += r.film.variance_of_mean[p];
+      }
+    }
+    EXPECT_EQ(paths, 40u * 24u * 3u) << shards << " shards";
+    EXPECT_TRUE(test::bitwise_identical(whole, sum)) << shards << " shards";
+  }
+  RenderOptions bad = o;
+  bad.shard = 2;
+  bad.shard_count = 2;
+  EXPECT_THROW(render(scene, bad), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, Determinism, ::testing::Values("pt", "snee", "sla"));

@@ -1,0 +1,17 @@
+// Gathers the shards of a render split across MPI processes into rank 0's result. Each pixel
+// belongs to one shard and is black in the others, so a sum gives the single-process image bit
+// for bit (adding zeros changes no bit of a non-negative value).
+#pragma once
+
+#include <mpi.h>
+
+#include "scheduler/render.h"
+
+namespace snee {
+
+// Collective over `comm`: every rank calls it after rendering its shard. On rank 0 `result`
+// becomes the whole render's (film, paths and rays summed, the slowest rank's times, CPU time
+// summed); returns whether this rank is rank 0.
+bool join_shards(RenderResult& result, MPI_Comm comm);
+
+}  // namespace snee
