@@ -39,9 +39,7 @@ void run_units_breadth_first(const KernelContext& ctx, const UnitSource& source,
         busy[kept++] = lane;
         continue;
       }
-      source.film.add(lane_unit_index[lane]);
-      source.window.finish(lane_unit_index[lane]);
-      if (!source.progress.unit_finished(*lanes[lane])) source.window.abort();
+      source.unit_done(lane_unit_index[lane], *lanes[lane]);
       idle.push_back(lane);
     }
     busy.resize(kept);

@@ -18,9 +18,7 @@ void run_units_depth_first(const KernelContext& ctx, const UnitSource& source, i
           while (const std::optional<size_t> k = source.window.take(/*wait=*/true)) {
             const WorkUnit unit = source.grid.unit(*k);
             run_work_unit(ctx, unit, ws, source.film.buffer(*k));
-            source.film.add(*k);
-            source.window.finish(*k);
-            if (!source.progress.unit_finished(ws)) source.window.abort();
+            source.unit_done(*k, ws);
           }
         } catch (...) {
           // The failed unit never finishes; without this the others would wait for it.

@@ -58,8 +58,9 @@ void FilmAccumulator::add_to_sums(size_t k) {
   }
 }
 
-Film FilmAccumulator::resolve() const {
+Film FilmAccumulator::resolve(const FilmMetadata& meta) const {
   Film film;
+  film.meta = meta;
   film.width = width_;
   film.height = height_;
   const size_t pixel_count = static_cast<size_t>(width_) * height_;

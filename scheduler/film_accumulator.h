@@ -29,10 +29,10 @@ class FilmAccumulator {
   // the sums, or parks it. Thread-safe; call it before the window learns the unit finished.
   void add(size_t unit);
   // Mean and variance of the mean per pixel over the samples added so far (a tile's chunks up
-  // to its first missing one), and meta.min_spp. Once every unit is in, that is the image; before,
-  // a snapshot in which every pixel is an unbiased estimate with its own sample count.
-  // Thread-safe: locks one tile at a time.
-  Film resolve() const;
+  // to its first missing one), with `meta` and its spp and min_spp filled in. Once every unit
+  // is in, that is the image; before, a snapshot in which every pixel is an unbiased estimate
+  // with its own sample count. Thread-safe: locks one tile at a time.
+  Film resolve(const FilmMetadata& meta = {}) const;
 
  private:
   struct Tile {

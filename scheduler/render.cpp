@@ -139,12 +139,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   });
 
   RenderResult result;
-  result.film = film_sums.resolve();
+  result.film = film_sums.resolve(meta);
   Film& film = result.film;
   result.complete = film.meta.min_spp == options.spp;
-  const int min_spp = film.meta.min_spp;
-  film.meta = meta;
-  film.meta.min_spp = min_spp;
   RenderStats& stats = result.stats;
   const auto end = std::chrono::steady_clock::now();
   stats.seconds = std::chrono::duration<double>(end - start).count();

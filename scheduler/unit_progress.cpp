@@ -34,12 +34,9 @@ void UnitProgress::checkpoint_if_due() {
   const double now = elapsed_seconds();
   if (now - last_checkpoint_seconds_ < hooks_.checkpoint_seconds) return;
   last_checkpoint_seconds_ = now;
-  Film film = film_.resolve();
-  const int min_spp = film.meta.min_spp;
-  film.meta = meta_;
-  film.meta.min_spp = min_spp;
-  film.meta.render_seconds = now;
-  hooks_.checkpoint(film);
+  FilmMetadata meta = meta_;
+  meta.render_seconds = now;
+  hooks_.checkpoint(film_.resolve(meta));
 }
 
 }  // namespace snee

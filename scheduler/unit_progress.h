@@ -16,7 +16,7 @@ namespace snee {
 
 class UnitProgress {
  public:
-  // `meta` is stamped on every checkpoint (with the time so far and its min_spp).
+  // `meta` is stamped on every checkpoint, with the time so far.
   UnitProgress(const RenderHooks& hooks, int64_t samples_total,
                std::chrono::steady_clock::time_point start, const FilmAccumulator& film,
                const FilmMetadata& meta);

@@ -22,6 +22,14 @@ struct UnitSource {
   UnitWindow& window;
   FilmAccumulator& film;
   UnitProgress& progress;
+
+  // Unit k has run in `ws`. Its samples go into the film before the window learns it finished:
+  // only then may a later unit reuse its sample buffer. Stops the window if asked to.
+  void unit_done(size_t k, const UnitWorkspace& ws) const {
+    film.add(k);
+    window.finish(k);
+    if (!progress.unit_finished(ws)) window.abort();
+  }
 };
 
 using ThreadWorkspaces = tbb::enumerable_thread_specific<UnitWorkspace>;
