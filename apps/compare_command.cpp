@@ -114,7 +114,8 @@ int CompareCommand::run() const {
     scene.camera.width = size->width;
     scene.camera.height = size->height;
   }
-  const std::string name = scene.name.empty() ? "scene" : scene.name;
+  if (scene.name.empty()) scene.name = "scene";  // render() stamps it on every film
+  const std::string& name = scene.name;
   const fs::path dir = output_.empty() ? fs::path("out") / ("compare-" + name) : fs::path(output_);
   fs::create_directories(dir);
 
@@ -133,7 +134,6 @@ int CompareCommand::run() const {
     ro.seed = seed_ + kReferenceSeedOffset;
     RenderResult r = render_logged(scene, ro, quiet_, "reference");
     reference = std::move(r.film);
-    reference.meta.scene = name;
     write_exr(reference, (dir / "reference.exr").string());
   }
 
@@ -152,7 +152,6 @@ int CompareCommand::run() const {
     e.film = std::move(r.film);
     e.stats = r.stats;
     e.spp = o.spp;
-    e.film.meta.scene = name;
     e.error = image_error(e.film, reference);
     e.efficiency = e.error.relative_mse > 0 ? 1.0 / (e.error.relative_mse * e.stats.seconds) : 0;
     e.efficiency_trimmed = e.error.relative_mse_trimmed > 0

@@ -190,6 +190,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   }
 
   const std::string name = output_name(scene, scene_);
+  scene.name = name;  // render() stamps it on the film and on every checkpoint
   const fs::path exr = output_.empty() ? fs::path("out") / (name + ".exr") : fs::path(output_);
   const fs::path png = fs::path(exr).replace_extension(".png");
   create_parent_directory(exr);
@@ -200,10 +201,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   if (shows_progress) hooks.progress = [&bar](const Progress& p) { bar.update(p); };
   if (checkpoint_seconds_ > 0) {
     hooks.checkpoint_seconds = checkpoint_seconds_;
-    hooks.checkpoint = [&](Film film) {
-      film.meta.scene = name;
-      write_images(film, exr, png);
-    };
+    hooks.checkpoint = [&](const Film& film) { write_images(film, exr, png); };
   }
   const InterruptRequest interrupt;
   hooks.stop_requested = [&interrupt] { return interrupt.requested(); };
@@ -218,27 +216,23 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   bar.finish();
   if (distribution.join && !distribution.join(result)) return 0;
 
-  result.film.meta.scene = name;
   write_images(result.film, exr, png);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
-  if (!result.complete) {
+  if (result.complete) {
+    std::printf("rendered %s: %s, %dx%d, %d spp, %.2f s, %.1f Mrays/s\n", name.c_str(),
+                options.integrator.c_str(), result.film.width, result.film.height, options.spp,
+                result.stats.seconds, result.stats.mrays_per_second());
+  } else {
     std::printf(
         "interrupted %s after %llu of %lld pixel samples (every pixel has at least %d "
         "of %d spp)\n",
         name.c_str(), static_cast<unsigned long long>(result.stats.paths),
         static_cast<long long>(result.film.width) * result.film.height * options.spp,
         result.film.meta.min_spp, options.spp);
-    std::printf("wrote %s\nwrote %s\n", exr.c_str(), png.c_str());
-    if (!stats_.empty()) std::printf("wrote %s\n", stats_.c_str());
-    return interrupt.exit_status();
   }
-
-  std::printf("rendered %s: %s, %dx%d, %d spp, %.2f s, %.1f Mrays/s\n", name.c_str(),
-              options.integrator.c_str(), result.film.width, result.film.height, options.spp,
-              result.stats.seconds, result.stats.mrays_per_second());
   std::printf("wrote %s\nwrote %s\n", exr.c_str(), png.c_str());
   if (!stats_.empty()) std::printf("wrote %s\n", stats_.c_str());
-  return 0;
+  return result.complete ? 0 : interrupt.exit_status();
 }
 
 }  // namespace snee
