@@ -3,13 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstring>
 #include <random>
 #include <set>
 #include <vector>
 
 #include "scheduler/film_accumulator.h"
 #include "scheduler/unit_window.h"
+#include "tests/support/render_helpers.h"
 
 namespace snee {
 namespace {
@@ -51,13 +51,6 @@ void fill(const UnitGrid& grid, size_t k, int width, Rgb* buffer) {
   }
 }
 
-bool same_bits(const Film& a, const Film& b) {
-  return a.mean.size() == b.mean.size() &&
-         std::memcmp(a.mean.data(), b.mean.data(), a.mean.size() * sizeof(Rgb)) == 0 &&
-         std::memcmp(a.variance_of_mean.data(), b.variance_of_mean.data(),
-                     a.variance_of_mean.size() * sizeof(Rgb)) == 0;
-}
-
 TEST(FilmAccumulator, UnitsAddedInAnyOrderGiveTheSampleOrderSums) {
   const int width = 7, height = 5;
   const uint32_t spp = 9;
@@ -74,7 +67,7 @@ TEST(FilmAccumulator, UnitsAddedInAnyOrderGiveTheSampleOrderSums) {
       fill(grid, k, width, film.buffer(k));
       film.add(k);
     }
-    EXPECT_TRUE(same_bits(reference, film.resolve())) << "trial " << trial;
+    EXPECT_TRUE(test::bitwise_identical(reference, film.resolve())) << "trial " << trial;
   }
   // The test would notice an accumulator that ignored the order: summing these samples in
   // reverse index order gives other bits.
@@ -122,7 +115,7 @@ TEST(FilmAccumulator, ReusedBuffersUnderTheWindowKeepTheSums) {
         running.erase(it);
       }
     }
-    EXPECT_TRUE(same_bits(reference, film.resolve())) << "lead " << lead;
+    EXPECT_TRUE(test::bitwise_identical(reference, film.resolve())) << "lead " << lead;
   }
 }
 
@@ -159,7 +152,7 @@ TEST(FilmAccumulator, APartialFilmResolvesEachTileOverItsOwnSamples) {
   film.add(1);
   const Film both = film.resolve();
   EXPECT_EQ(both.meta.min_spp, 4);
-  EXPECT_TRUE(same_bits(four, both));
+  EXPECT_TRUE(test::bitwise_identical(four, both));
 }
 
 }  // namespace

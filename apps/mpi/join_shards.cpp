@@ -6,18 +6,10 @@
 namespace snee {
 namespace {
 
-std::vector<float> film_channels(const Film& film) {
-  std::vector<float> v;
-  v.reserve(film.mean.size() * 6);
-  for (size_t p = 0; p < film.mean.size(); ++p) {
-    for (int c = 0; c < 3; ++c) v.push_back(film.mean[p][c]);
-    for (int c = 0; c < 3; ++c) v.push_back(film.variance_of_mean[p][c]);
-  }
-  return v;
-}
+static_assert(sizeof(Rgb) == 3 * sizeof(float));
 
-template <typename T>
-void reduce_in_place(T* values, int count, MPI_Datatype type, MPI_Op op, int rank, MPI_Comm comm) {
+void reduce_in_place(void* values, int count, MPI_Datatype type, MPI_Op op, int rank,
+                     MPI_Comm comm) {
   if (rank == 0) {
     MPI_Reduce(MPI_IN_PLACE, values, count, type, op, 0, comm);
   } else {
@@ -30,9 +22,11 @@ void reduce_in_place(T* values, int count, MPI_Datatype type, MPI_Op op, int ran
 bool join_shards(RenderResult& result, MPI_Comm comm) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  std::vector<float> channels = film_channels(result.film);
-  reduce_in_place(channels.data(), static_cast<int>(channels.size()), MPI_FLOAT, MPI_SUM, rank,
-                  comm);
+  // An Rgb is three packed floats, so each film plane reduces as one float array.
+  for (std::vector<Rgb>* plane : {&result.film.mean, &result.film.variance_of_mean}) {
+    reduce_in_place(plane->data(), static_cast<int>(3 * plane->size()), MPI_FLOAT, MPI_SUM, rank,
+                    comm);
+  }
 
   RenderStats& s = result.stats;
   std::vector<uint64_t> counts(s.rays.begin(), s.rays.end());
@@ -49,10 +43,6 @@ bool join_shards(RenderResult& result, MPI_Comm comm) {
   reduce_in_place(least, 2, MPI_INT, MPI_MIN, rank, comm);
   if (rank != 0) return false;
 
-  for (size_t p = 0; p < result.film.mean.size(); ++p) {
-    for (int c = 0; c < 3; ++c) result.film.mean[p][c] = channels[6 * p + c];
-    for (int c = 0; c < 3; ++c) result.film.variance_of_mean[p][c] = channels[6 * p + 3 + c];
-  }
   for (size_t k = 0; k < s.rays.size(); ++k) s.rays[k] = counts[k];
   s.paths = counts[s.rays.size()];
   s.nonfinite_samples = counts[s.rays.size() + 1];
