@@ -114,7 +114,6 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   UnitWindow window(grid.size(), lead);
   FilmAccumulator film_sums(grid, width, height, lead);
   FilmMetadata meta;
-  meta.spp = options.spp;
   meta.integrator = integrator_name(integrator);
   meta.seed = options.seed;
   meta.scene = scene.name;
