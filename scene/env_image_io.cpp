@@ -1,11 +1,12 @@
 #include "scene/env_image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
-#include <filesystem>
 #include <vector>
 
+#include "scene/input_file.h"
 #include "scene/scene_error.h"
 
 namespace snee {
@@ -25,11 +26,12 @@ bool is_srgb_encoded(const OIIO::ImageSpec& spec) {
 
 }  // namespace
 
-EnvImage read_env_image(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw SceneError(path + ": cannot read environment image: no such file");
-  }
-  auto input = OIIO::ImageInput::open(path);
+EnvImage read_env_image(const std::string& path, const MemoryBudget& budget) {
+  // OpenImageIO reads the bytes from memory, so it sees exactly the file that was checked to
+  // be a regular one and never opens a FIFO or a device itself.
+  const std::string bytes = read_input_file(path, "environment image", budget);
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  auto input = OIIO::ImageInput::open(path, nullptr, &memory);
   if (!input) {
     throw SceneError(path + ": cannot read environment image: " + OIIO::geterror());
   }
@@ -37,7 +39,25 @@ EnvImage read_env_image(const std::string& path) {
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
     throw SceneError(path + ": the environment image is empty");
   }
+  // read_image would write every slice of a volume into a buffer sized for one.
+  if (spec.depth != 1) {
+    throw SceneError(path + ": the environment image is a volume of " + std::to_string(spec.depth) +
+                     " slices (expected a flat image)");
+  }
   const int channels = spec.nchannels;
+  const uint64_t pixels =
+      saturating_multiply(static_cast<uint64_t>(spec.width), static_cast<uint64_t>(spec.height));
+  // A compressed file may rightly decode to far more than its own size, so only the budget
+  // bounds the decoded channels and the RGB image made from them.
+  const uint64_t decoded_bytes =
+      saturating_multiply(pixels, channels * sizeof(float) + sizeof(Rgb));
+  if (!budget.allows(decoded_bytes)) {
+    throw SceneError(path + ": " +
+                     budget.exceeded("the decoded " + std::to_string(spec.width) + "x" +
+                                         std::to_string(spec.height) + " pixels of " +
+                                         std::to_string(channels) + " channels",
+                                     decoded_bytes));
+  }
   std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
   if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
     throw SceneError(path + ": cannot decode environment image: " + input->geterror());

@@ -4,9 +4,15 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <string_view>
+#include <vector>
 
+#include "scene/input_file.h"
 #include "scene/scene_error.h"
 
 namespace snee {
@@ -20,33 +26,133 @@ std::string lowercase_extension(const std::string& path) {
   return ext;
 }
 
+struct ObjCounts {
+  size_t vertices = 0;
+  size_t corners = 0;  // over all faces
+};
+
+bool is_obj_space(char c) {
+  return c == ' ' || c == '\t';
+}
+
+std::vector<std::string_view> obj_words(std::string_view line) {
+  std::vector<std::string_view> words;
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && is_obj_space(line[i])) ++i;
+    size_t j = i;
+    while (j < line.size() && !is_obj_space(line[j])) ++j;
+    if (j > i) words.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return words;
+}
+
+// from_chars reads no leading '+', which OBJ writers do emit.
+std::string_view without_plus(std::string_view word) {
+  if (word.size() > 1 && word[0] == '+' && word[1] != '+' && word[1] != '-') word.remove_prefix(1);
+  return word;
+}
+
+// tinyobjloader lets two kinds of damage through silently: a coordinate it cannot parse
+// ("nan", "inf", a missing one) becomes 0, and a corner number past int range wraps round in
+// atoi to some other vertex. This pass rejects both, splitting the text as tinyobjloader does
+// (lines end at \n, \r or \r\n and stop at a NUL; words are separated by spaces and tabs), and
+// counts what its arrays will hold.
+ObjCounts check_obj_text(const std::string& path, std::string_view text) {
+  ObjCounts counts;
+  size_t line_number = 0;
+  size_t pos = 0;
+  while (pos < text.size()) {
+    const size_t eol = std::min(text.find_first_of("\r\n", pos), text.size());
+    std::string_view line = text.substr(pos, eol - pos);
+    pos = eol + (text.compare(eol, 2, "\r\n") == 0 ? 2 : 1);
+    ++line_number;
+    line = line.substr(0, line.find('\0'));
+    const std::vector<std::string_view> words = obj_words(line);
+    if (words.empty()) continue;
+    auto fail = [&](const std::string& what) {
+      return SceneError(path + ": line " + std::to_string(line_number) + ": " + what);
+    };
+    if (words[0] == "v") {
+      ++counts.vertices;
+      const std::string vertex = "vertex " + std::to_string(counts.vertices);
+      if (words.size() < 4) {
+        throw fail(vertex + " has " + std::to_string(words.size() - 1) +
+                   " coordinates (expected x y z)");
+      }
+      for (size_t k = 1; k <= 3; ++k) {
+        const std::string_view word = without_plus(words[k]);
+        double value = 0;
+        const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
+        if (ec != std::errc() || end != word.data() + word.size() ||
+            !std::isfinite(static_cast<float>(value))) {
+          throw fail(vertex + " has a coordinate '" + std::string(words[k]) +
+                     "' that is not a finite number");
+        }
+      }
+    } else if (words[0] == "f") {
+      for (size_t k = 1; k < words.size(); ++k) {
+        // Of "v", "v/vt", "v//vn" or "v/vt/vn", only the vertex number matters to us.
+        const std::string_view word = without_plus(words[k].substr(0, words[k].find('/')));
+        int index = 0;
+        const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), index);
+        if (ec != std::errc() || end != word.data() + word.size() || index == 0) {
+          throw fail("face corner '" + std::string(words[k]) +
+                     "' does not start with a vertex number (a non-zero integer within int "
+                     "range)");
+        }
+      }
+      counts.corners += words.size() - 1;
+    }
+  }
+  return counts;
+}
+
 }  // namespace
 
-TriangleMesh load_mesh(const std::string& path) {
+TriangleMesh load_mesh(const std::string& path, const MemoryBudget& budget) {
   const std::string ext = lowercase_extension(path);
-  if (ext == ".obj") return load_obj(path);
-  if (ext == ".ply") return load_ply(path);
+  if (ext == ".obj") return load_obj(path, budget);
+  if (ext == ".ply") return load_ply(path, budget);
   throw SceneError(path + ": unsupported mesh format '" + ext + "' (expected .obj or .ply)");
 }
 
-TriangleMesh load_obj(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw SceneError(path + ": cannot read mesh: no such file");
+TriangleMesh load_obj(const std::string& path, const MemoryBudget& budget) {
+  std::string text = read_input_file(path, "mesh", budget);
+  const ObjCounts counts = check_obj_text(path, text);
+  // tinyobjloader's arrays grow by doubling, so each may hold up to twice what it needs, and
+  // ours follow: a position per vertex, at most three indices per corner.
+  const uint64_t array_bytes = saturating_add(
+      saturating_multiply(counts.vertices, 2 * 3 * sizeof(tinyobj::real_t) + sizeof(Vec3)),
+      saturating_multiply(counts.corners, 2 * (sizeof(tinyobj::index_t) + sizeof(unsigned int)) +
+                                              3 * sizeof(uint32_t)));
+  if (!budget.allows(array_bytes)) {
+    throw SceneError(path + ": " +
+                     budget.exceeded("the arrays of " + std::to_string(counts.vertices) +
+                                         " vertices and " + std::to_string(counts.corners) +
+                                         " face corners",
+                                     array_bytes));
   }
-  tinyobj::ObjReaderConfig config;
-  // Triangulating ourselves keeps the file's face numbers available for error messages.
-  config.triangulate = false;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
-    std::string error = reader.Error();
+
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warning, error;
+  std::istringstream stream(std::move(text));
+  // No material reader: tinyobjloader then skips mtllib lines instead of opening the files
+  // they name, which could be anything (a device, a FIFO) and are never used. Triangulating
+  // ourselves keeps the file's face numbers available for error messages.
+  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &stream,
+                        /*readMatFn=*/nullptr, /*triangulate=*/false,
+                        /*default_vcols_fallback=*/false)) {
     while (!error.empty() && std::isspace(static_cast<unsigned char>(error.back()))) {
       error.pop_back();
     }
     throw SceneError(path + ": cannot read OBJ mesh: " + error);
   }
 
-  const std::vector<float>& v = reader.GetAttrib().vertices;
+  const std::vector<float>& v = attrib.vertices;
   TriangleMesh mesh;
   mesh.positions.resize(v.size() / 3);
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -58,7 +164,7 @@ TriangleMesh load_obj(const std::string& path) {
   }
 
   size_t face_number = 0;  // across all groups, 1-based in messages like the file's own counting
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+  for (const tinyobj::shape_t& shape : shapes) {
     const std::vector<tinyobj::index_t>& corners = shape.mesh.indices;
     size_t first = 0;
     for (const unsigned int face_size : shape.mesh.num_face_vertices) {

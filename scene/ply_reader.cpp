@@ -15,6 +15,7 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/input_file.h"
 #include "scene/mesh_io.h"
 #include "scene/scene_error.h"
 
@@ -78,6 +79,7 @@ struct PlyElement {
   std::string name;
   size_t count = 0;
   std::vector<PlyProperty> properties;
+  size_t header_line = 0;  // of its "element" line, for messages about the count
 };
 
 enum class PlyFormat : uint8_t { kAscii, kBinaryLittleEndian, kBinaryBigEndian };
@@ -88,18 +90,6 @@ struct PlyHeader {
   size_t body_offset = 0;  // first byte after "end_header\n"
   size_t body_line = 0;    // line number of the first body line
 };
-
-std::string read_whole_file(const std::string& path) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                       &std::fclose);
-  if (!file) throw SceneError(path + ": cannot read mesh: " + std::strerror(errno));
-  std::string data;
-  char buffer[1 << 16];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) data.append(buffer, n);
-  if (std::ferror(file.get())) throw SceneError(path + ": read error: " + std::strerror(errno));
-  return data;
-}
 
 std::vector<std::string_view> split_words(std::string_view line) {
   std::vector<std::string_view> words;
@@ -126,10 +116,10 @@ PlyHeader parse_header(const std::string& path, std::string_view data) {
     if (pos >= data.size()) {
       throw SceneError(path + ": the PLY header has no end_header line");
     }
-    size_t eol = data.find('\n', pos);
-    if (eol == std::string_view::npos) eol = data.size();
-    const std::string_view line = data.substr(pos, eol - pos);
-    pos = eol + 1;
+    const size_t eol = data.find('\n', pos);
+    const bool last_line = eol == std::string_view::npos;
+    const std::string_view line = data.substr(pos, last_line ? std::string_view::npos : eol - pos);
+    pos = last_line ? data.size() : eol + 1;
     ++line_number;
     const std::vector<std::string_view> w = split_words(line);
 
@@ -138,7 +128,11 @@ PlyHeader parse_header(const std::string& path, std::string_view data) {
       continue;
     }
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "end_header") break;
+    if (w[0] == "end_header") {
+      // The body starts after the newline, so without one there is no telling where it starts.
+      if (last_line) throw fail("end_header must end with a newline before the body");
+      break;
+    }
     if (w[0] == "format") {
       if (w.size() != 3) throw fail("expected 'format <ascii|binary_*> 1.0'");
       if (w[1] == "ascii") {
@@ -157,7 +151,7 @@ PlyHeader parse_header(const std::string& path, std::string_view data) {
           std::from_chars(w[2].data(), w[2].data() + w[2].size(), count).ec != std::errc()) {
         throw fail("expected 'element <name> <count>'");
       }
-      header.elements.push_back({std::string(w[1]), count, {}});
+      header.elements.push_back({std::string(w[1]), count, {}, line_number});
     } else if (w[0] == "property") {
       if (header.elements.empty()) throw fail("property declared before any element");
       PlyProperty property;
@@ -182,6 +176,13 @@ PlyHeader parse_header(const std::string& path, std::string_view data) {
     }
   }
   if (!seen_format) throw SceneError(path + ": the PLY header has no format line");
+  for (const PlyElement& element : header.elements) {
+    // Reading instances of nothing would loop `count` times without consuming a byte.
+    if (element.count > 0 && element.properties.empty()) {
+      throw SceneError(path + ": line " + std::to_string(element.header_line) + ": element '" +
+                       element.name + "' has instances but no properties");
+    }
+  }
   header.body_offset = pos;
   header.body_line = line_number + 1;
   return header;
@@ -214,6 +215,11 @@ class AsciiBody {
     if (!next_token()) return false;
     while (p_ < end_ && !is_space(*p_)) ++p_;
     return true;
+  }
+  // Whether `values` more numbers can follow: each takes a digit and a separator, except
+  // that the last in the file needs no separator.
+  bool can_hold(size_t values, PlyType) const {
+    return values <= (static_cast<size_t>(end_ - p_) + 1) / 2;
   }
   std::string where() const { return "line " + std::to_string(line_); }
 
@@ -256,6 +262,9 @@ class BinaryBody {
     if (static_cast<size_t>(end_ - p_) < n) return false;
     p_ += n;
     return true;
+  }
+  bool can_hold(size_t values, PlyType type) const {
+    return values <= static_cast<size_t>(end_ - p_) / type_size(type);
   }
   std::string where() const { return "byte " + std::to_string(p_ - begin_); }
 
@@ -350,12 +359,71 @@ MeshLayout find_layout(const std::string& path, const PlyHeader& header) {
   return layout;
 }
 
+// Bytes a value of `type` takes at the least: binary, its size; text, a digit and a separator.
+size_t min_value_bytes(PlyFormat format, PlyType type) {
+  return format == PlyFormat::kAscii ? 2 : type_size(type);
+}
+
+// Rejects counts that the body cannot hold before anything is allocated for them, so that a
+// header of a few bytes cannot ask for gigabytes. Every list is taken as empty except the
+// face's index list, which needs its three corners.
+void check_counts_fit(const std::string& path, const PlyHeader& header, const MeshLayout& layout,
+                      size_t body_bytes) {
+  // Corner indices are 32-bit, in our meshes as in Embree.
+  constexpr uint64_t kMaxVertices = uint64_t{1} << 32;
+  const PlyElement& vertices = header.elements[layout.vertex_element];
+  if (vertices.count > kMaxVertices) {
+    throw SceneError(path + ": line " + std::to_string(vertices.header_line) + ": " +
+                     std::to_string(vertices.count) + " vertices, more than the " +
+                     std::to_string(kMaxVertices) + " a mesh may have");
+  }
+  // The last value of a text body needs no separator after it.
+  const uint64_t available = body_bytes + (header.format == PlyFormat::kAscii ? 1 : 0);
+  uint64_t needed = 0;
+  for (size_t e = 0; e < header.elements.size(); ++e) {
+    const PlyElement& element = header.elements[e];
+    uint64_t instance_bytes = 0;
+    for (size_t p = 0; p < element.properties.size(); ++p) {
+      const PlyProperty& property = element.properties[p];
+      if (!property.is_list) {
+        instance_bytes += min_value_bytes(header.format, property.type);
+        continue;
+      }
+      instance_bytes += min_value_bytes(header.format, property.count_type);
+      if (e == layout.face_element && p == layout.index_property) {
+        instance_bytes += 3 * min_value_bytes(header.format, property.type);
+      }
+    }
+    needed = saturating_add(needed, saturating_multiply(element.count, instance_bytes));
+    if (needed > available) {
+      throw SceneError(path + ": line " + std::to_string(element.header_line) + ": " +
+                       std::to_string(element.count) + " instances of element '" + element.name +
+                       "' (with the elements before it) need at least " + format_bytes(needed) +
+                       " of body, but the file has " + format_bytes(body_bytes) +
+                       " after its header");
+    }
+  }
+}
+
 template <typename Body>
 TriangleMesh read_body(const std::string& path, const PlyHeader& header, const MeshLayout& layout,
-                       Body body) {
+                       const MemoryBudget& budget, Body body) {
+  const size_t vertex_count = header.elements[layout.vertex_element].count;
+  const size_t face_count = header.elements[layout.face_element].count;
+  // A triangle per face; polygons grow the index array as they come, by no more than the
+  // corners they add to the file.
+  const uint64_t array_bytes =
+      saturating_add(saturating_multiply(vertex_count, sizeof(Vec3)),
+                     saturating_multiply(face_count, 3 * sizeof(uint32_t)));
+  if (!budget.allows(array_bytes)) {
+    throw SceneError(path + ": " +
+                     budget.exceeded("the arrays of " + std::to_string(vertex_count) +
+                                         " vertices and " + std::to_string(face_count) + " faces",
+                                     array_bytes));
+  }
   TriangleMesh mesh;
-  mesh.positions.resize(header.elements[layout.vertex_element].count);
-  mesh.indices.reserve(3 * header.elements[layout.face_element].count);
+  mesh.positions.resize(vertex_count);
+  mesh.indices.reserve(3 * face_count);
   std::vector<uint32_t> corners;
 
   for (size_t e = 0; e < header.elements.size(); ++e) {
@@ -386,6 +454,10 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
           throw fail(i, "expected a non-negative list length for property '" + property.name + "'");
         }
         const auto count = static_cast<size_t>(count_value);
+        if (!body.can_hold(count, property.type)) {
+          throw fail(i, "a list of " + std::to_string(count) + " items for property '" +
+                            property.name + "' is longer than the rest of the file");
+        }
         const bool indices = e == layout.face_element && p == layout.index_property;
         if (!indices) {
           for (size_t k = 0; k < count; ++k) {
@@ -419,15 +491,17 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
 
 }  // namespace
 
-TriangleMesh load_ply(const std::string& path) {
-  const std::string data = read_whole_file(path);
+TriangleMesh load_ply(const std::string& path, const MemoryBudget& budget) {
+  const std::string data = read_input_file(path, "mesh", budget);
   const PlyHeader header = parse_header(path, data);
   const MeshLayout layout = find_layout(path, header);
+  check_counts_fit(path, header, layout, data.size() - header.body_offset);
   if (header.format == PlyFormat::kAscii) {
-    return read_body(path, header, layout, AsciiBody(data, header.body_offset, header.body_line));
+    return read_body(path, header, layout, budget,
+                     AsciiBody(data, header.body_offset, header.body_line));
   }
   return read_body(
-      path, header, layout,
+      path, header, layout, budget,
       BinaryBody(data, header.body_offset, header.format == PlyFormat::kBinaryBigEndian));
 }
 

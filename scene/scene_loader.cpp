@@ -2,11 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "scene/env_image_io.h"
+#include "scene/input_file.h"
 #include "scene/json_reader.h"
 #include "scene/mesh_io.h"
 #include "scene/mesh_topology.h"
@@ -106,8 +105,8 @@ Transform parse_transform(const JsonValue& value) {
 
 class SceneReader {
  public:
-  SceneReader(std::string origin, std::string base_dir)
-      : origin_(std::move(origin)), base_dir_(std::move(base_dir)) {}
+  SceneReader(std::string origin, std::string base_dir, const MemoryBudget& budget)
+      : origin_(std::move(origin)), base_dir_(std::move(base_dir)), budget_(budget) {}
 
   LoadedScene read(const json& doc) {
     const JsonValue root(doc, "", origin_);
@@ -346,7 +345,7 @@ class SceneReader {
       const JsonValue file_value = obj.required("file");
       const ResolvedPath file = resolve(file_value.string());
       try {
-        shape.mesh = load_mesh(file.file);
+        shape.mesh = load_mesh(file.file, budget_);
       } catch (const SceneError& e) {
         file_value.fail(e.what());
       }
@@ -471,7 +470,7 @@ class SceneReader {
         const JsonValue file_value = obj.required("file");
         const ResolvedPath file = resolve(file_value.string());
         try {
-          out_.scene.env_images.push_back(read_env_image(file.file));
+          out_.scene.env_images.push_back(read_env_image(file.file, budget_));
         } catch (const SceneError& e) {
           file_value.fail(e.what());
         }
@@ -498,6 +497,7 @@ class SceneReader {
 
   std::string origin_;
   std::string base_dir_;
+  MemoryBudget budget_;
   LoadedScene out_;
   std::map<std::string, std::string> material_names_;  // name -> JSON path of its definition
   std::map<std::string, std::string> medium_names_;
@@ -510,19 +510,16 @@ class SceneReader {
 
 }  // namespace
 
-LoadedScene load_scene_json(const json& doc, const std::string& origin,
-                            const std::string& base_dir) {
-  return SceneReader(origin, base_dir).read(doc);
+LoadedScene load_scene_json(const json& doc, const std::string& origin, const std::string& base_dir,
+                            const MemoryBudget& budget) {
+  return SceneReader(origin, base_dir, budget).read(doc);
 }
 
-LoadedScene load_scene_file(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw SceneError(path + ": cannot open the scene file");
-  std::ostringstream text;
-  text << file.rdbuf();
+LoadedScene load_scene_file(const std::string& path, const MemoryBudget& budget) {
+  const std::string text = read_input_file(path, "the scene file", budget);
   json doc;
   try {
-    doc = json::parse(text.str(), nullptr, true, /*ignore_comments=*/true);
+    doc = json::parse(text, nullptr, true, /*ignore_comments=*/true);
   } catch (const json::parse_error& e) {
     // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column
     // C: ..."; the bracketed id means nothing to a user.
@@ -531,14 +528,14 @@ LoadedScene load_scene_file(const std::string& path) {
     if (id_end != std::string::npos) message = message.substr(id_end + 2);
     throw SceneError(path + ": malformed JSON: " + message);
   }
-  return load_scene_json(doc, path, fs::path(path).parent_path().string());
+  return load_scene_json(doc, path, fs::path(path).parent_path().string(), budget);
 }
 
-LoadedScene load_scene(const std::string& spec) {
+LoadedScene load_scene(const std::string& spec, const MemoryBudget& budget) {
   constexpr std::string_view kBuiltinPrefix = "builtin:";
   if (spec.starts_with(kBuiltinPrefix))
     return load_builtin_scene(spec.substr(kBuiltinPrefix.size()));
-  return load_scene_file(spec);
+  return load_scene_file(spec, budget);
 }
 
 }  // namespace snee

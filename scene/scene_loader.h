@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/memory_budget.h"
 #include "scene/scene.h"
 #include "scene/scene_error.h"
 
@@ -22,13 +23,15 @@ struct LoadedScene {
   nlohmann::json canonical;
 };
 
-// "builtin:NAME" loads a built-in scene; anything else is a path to a JSON scene file.
-LoadedScene load_scene(const std::string& spec);
-LoadedScene load_scene_file(const std::string& path);
+// "builtin:NAME" loads a built-in scene; anything else is a path to a JSON scene file. Every
+// file read (the scene file, meshes, images) must be a regular file, and it and the arrays made
+// from it must each fit in `budget` (memory_budget.h).
+LoadedScene load_scene(const std::string& spec, const MemoryBudget& budget = {});
+LoadedScene load_scene_file(const std::string& path, const MemoryBudget& budget = {});
 // Parses an already-read document; `origin` names it in messages and `base_dir` resolves
 // relative mesh and image paths.
 LoadedScene load_scene_json(const nlohmann::json& doc, const std::string& origin,
-                            const std::string& base_dir);
+                            const std::string& base_dir, const MemoryBudget& budget = {});
 
 struct BuiltinSceneInfo {
   std::string name;

@@ -1,10 +1,13 @@
 // Environment images: channel handling and colour decoding for each kind of file OIIO writes.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -45,9 +48,9 @@ class EnvImageIoTest : public ::testing::Test {
   fs::path dir_;
 };
 
-std::string error_of(const std::string& path) {
+std::string error_of(const std::string& path, const MemoryBudget& budget = {}) {
   try {
-    read_env_image(path);
+    read_env_image(path, budget);
   } catch (const SceneError& e) {
     return e.what();
   }
@@ -112,6 +115,45 @@ TEST_F(EnvImageIoTest, ErrorsNameTheFile) {
   const std::string nan_message = error_of(bad);
   EXPECT_NE(nan_message.find("nan.exr"), std::string::npos) << nan_message;
   EXPECT_NE(nan_message.find("pixel (0, 0)"), std::string::npos) << nan_message;
+}
+
+// Every format snee's scenes use is read from memory (the file checked to be a regular one).
+TEST_F(EnvImageIoTest, CommonFormatsLoad) {
+  const std::vector<unsigned char> rgb = {10, 20, 30, 40, 50, 60};
+  for (const char* name : {"sky.tif", "sky.jpg", "sky.bmp", "sky.tga"}) {
+    const EnvImage image = read_env_image(write_image(name, 2, 1, 3, OIIO::TypeDesc::UINT8, rgb));
+    EXPECT_EQ(image.width, 2) << name;
+    EXPECT_GT(image.pixels[1].z, image.pixels[0].x) << name;
+  }
+}
+
+// A 60-byte Radiance header claiming 10^10 pixels made the reader ask for 120 GB at once.
+TEST_F(EnvImageIoTest, DecodedSizeBeyondTheMemoryBudgetIsAnError) {
+  const std::string path = (dir_ / "huge.hdr").string();
+  std::ofstream(path) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n";
+  try {
+    read_env_image(path, MemoryBudget{uint64_t{1} << 30});
+    ADD_FAILURE() << "no error for " << path;
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  path + ": the decoded 100000x100000 pixels of 3 channels need 223.5 GiB, more "
+                         "than the memory budget of 1.0 GiB (--max-memory)"),
+              std::string::npos)
+        << e.what();
+  }
+
+  const std::vector<float> rgb(64 * 64 * 3, 0.5f);
+  const std::string small = write_image("small.exr", 64, 64, 3, OIIO::TypeDesc::HALF, rgb);
+  EXPECT_EQ(read_env_image(small, MemoryBudget{200 << 10}).pixels.size(), 64u * 64u);
+  EXPECT_NE(error_of(small, MemoryBudget{64 << 10}).find("need 96.0 KiB"), std::string::npos);
+}
+
+// OpenImageIO opened the path itself, so a FIFO there blocked the load for ever.
+TEST_F(EnvImageIoTest, OnlyRegularFilesAreRead) {
+  const std::string fifo = (dir_ / "sky.exr").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+  EXPECT_NE(error_of(fifo).find(fifo + ": cannot read environment image: it is a FIFO"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 // Mesh readers (OBJ, ASCII and binary PLY of both byte orders) and the edge and orientation
 // checks the scene loader relies on, on handmade files and on the project's test meshes.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <bit>
+#include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -14,6 +16,7 @@
 #include "scene/mesh_io.h"
 #include "scene/mesh_topology.h"
 #include "scene/scene_error.h"
+#include "tests/support/scene_error_of.h"
 
 namespace snee {
 namespace {
@@ -41,17 +44,7 @@ class MeshIoTest : public ::testing::Test {
   fs::path dir_;
 };
 
-// Message of the SceneError that `f` throws, or a failure if it throws none.
-template <typename F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no SceneError thrown";
-  return "";
-}
+using test::scene_error_of;
 
 // A unit cube [0,1]^3 with outward (counter-clockwise from outside) winding.
 TriangleMesh unit_cube() {
@@ -84,7 +77,7 @@ TEST_F(MeshIoTest, ObjPolygonsBecomeTriangleFans) {
 
 TEST_F(MeshIoTest, ObjIndexOutOfRangeNamesFileAndFace) {
   const std::string path = write("bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 7\n");
-  const std::string message = error_of([&] { load_obj(path); });
+  const std::string message = scene_error_of([&] { load_obj(path); });
   EXPECT_NE(message.find("bad.obj"), std::string::npos) << message;
   EXPECT_NE(message.find("face 2"), std::string::npos) << message;
   EXPECT_NE(message.find("vertex 7"), std::string::npos) << message;
@@ -92,18 +85,18 @@ TEST_F(MeshIoTest, ObjIndexOutOfRangeNamesFileAndFace) {
 
 TEST_F(MeshIoTest, ObjNonFiniteCoordinateNamesVertex) {
   const std::string path = write("nan.obj", "v 0 0 0\nv 1 1e60 0\nv 0 1 0\nf 1 2 3\n");
-  const std::string message = error_of([&] { load_obj(path); });
+  const std::string message = scene_error_of([&] { load_obj(path); });
   EXPECT_NE(message.find("nan.obj"), std::string::npos) << message;
   EXPECT_NE(message.find("vertex 2"), std::string::npos) << message;
 }
 
 TEST_F(MeshIoTest, MissingAndUnsupportedFilesNameTheFile) {
   const std::string missing = (dir_ / "missing.obj").string();
-  EXPECT_NE(error_of([&] { load_mesh(missing); }).find(missing), std::string::npos);
+  EXPECT_NE(scene_error_of([&] { load_mesh(missing); }).find(missing), std::string::npos);
   const std::string missing_ply = (dir_ / "missing.ply").string();
-  EXPECT_NE(error_of([&] { load_mesh(missing_ply); }).find(missing_ply), std::string::npos);
+  EXPECT_NE(scene_error_of([&] { load_mesh(missing_ply); }).find(missing_ply), std::string::npos);
   const std::string stl = write("thing.stl", "solid x\n");
-  const std::string message = error_of([&] { load_mesh(stl); });
+  const std::string message = scene_error_of([&] { load_mesh(stl); });
   EXPECT_NE(message.find("thing.stl"), std::string::npos);
   EXPECT_NE(message.find(".obj or .ply"), std::string::npos);
 }
@@ -148,38 +141,45 @@ TEST_F(MeshIoTest, AsciiPlyErrorsNameFileLineAndElement) {
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   const std::string bad_index = write("index.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
-  std::string message = error_of([&] { load_ply(bad_index); });
+  std::string message = scene_error_of([&] { load_ply(bad_index); });
   EXPECT_NE(message.find("index.ply"), std::string::npos) << message;
   EXPECT_NE(message.find("line 13"), std::string::npos) << message;
   EXPECT_NE(message.find("face 0"), std::string::npos) << message;
   EXPECT_NE(message.find("vertex index 3 is out of range"), std::string::npos) << message;
 
   const std::string bad_number = write("number.ply", header + "0 0 0\n1 zero 0\n0 1 0\n3 0 1 2\n");
-  message = error_of([&] { load_ply(bad_number); });
+  message = scene_error_of([&] { load_ply(bad_number); });
   EXPECT_NE(message.find("line 11"), std::string::npos) << message;
   EXPECT_NE(message.find("vertex 1"), std::string::npos) << message;
   EXPECT_NE(message.find("'y'"), std::string::npos) << message;
 
   const std::string infinite = write("inf.ply", header + "0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n");
-  message = error_of([&] { load_ply(infinite); });
+  message = scene_error_of([&] { load_ply(infinite); });
   EXPECT_NE(message.find("line 11"), std::string::npos) << message;
   EXPECT_NE(message.find("finite number for property 'z'"), std::string::npos) << message;
 
+  // Too short for the values the header declares: found before reading the body.
   const std::string truncated = write("short.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1\n");
-  EXPECT_NE(error_of([&] { load_ply(truncated); }).find("face 0"), std::string::npos);
+  message = scene_error_of([&] { load_ply(truncated); });
+  EXPECT_NE(message.find("line 7: 1 instances of element 'face'"), std::string::npos) << message;
+  // Long enough, but the last index is missing.
+  const std::string no_index = write("noindex.ply", header + "0 0 0\n1 0 0\n0 1 0\n3 0 1   \n");
+  message = scene_error_of([&] { load_ply(no_index); });
+  EXPECT_NE(message.find("face 0): expected a vertex index"), std::string::npos) << message;
 
   const std::string no_end = write("noend.ply", "ply\nformat ascii 1.0\nelement vertex 0\n");
-  EXPECT_NE(error_of([&] { load_ply(no_end); }).find("end_header"), std::string::npos);
+  EXPECT_NE(scene_error_of([&] { load_ply(no_end); }).find("end_header"), std::string::npos);
 
   const std::string not_ply = write("text.ply", "hello\n");
-  message = error_of([&] { load_ply(not_ply); });
+  message = scene_error_of([&] { load_ply(not_ply); });
   EXPECT_NE(message.find("line 1"), std::string::npos) << message;
 
   const std::string no_faces =
       write("noface.ply",
             "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
             "property float z\nend_header\n0 0 0\n");
-  EXPECT_NE(error_of([&] { load_ply(no_faces); }).find("no 'face' element"), std::string::npos);
+  EXPECT_NE(scene_error_of([&] { load_ply(no_faces); }).find("no 'face' element"),
+            std::string::npos);
 }
 
 // Appends `value` in the given byte order.
@@ -237,7 +237,7 @@ TEST_P(BinaryPlyTest, ReadsEitherByteOrder) {
 
 TEST_P(BinaryPlyTest, TruncatedFileNamesElementAndOffset) {
   const std::string path = write("cut.ply", binary_ply(GetParam(), true));
-  const std::string message = error_of([&] { load_ply(path); });
+  const std::string message = scene_error_of([&] { load_ply(path); });
   EXPECT_NE(message.find("cut.ply"), std::string::npos) << message;
   EXPECT_NE(message.find("face 1"), std::string::npos) << message;
   EXPECT_NE(message.find("byte "), std::string::npos) << message;
@@ -247,6 +247,206 @@ INSTANTIATE_TEST_SUITE_P(ByteOrder, BinaryPlyTest, ::testing::Values(false, true
                          [](const auto& param_info) {
                            return param_info.param ? "BigEndian" : "LittleEndian";
                          });
+
+// The header of a mesh with three float coordinates per vertex and one index list per face.
+std::string ply_header(const std::string& format, const std::string& vertices,
+                       const std::string& faces) {
+  return "ply\nformat " + format + " 1.0\nelement vertex " + vertices +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + faces +
+         "\nproperty list uchar int vertex_indices\nend_header\n";
+}
+
+// The body then started wherever the byte after the file's end was, and was read from there.
+TEST_F(MeshIoTest, PlyEndHeaderWithoutNewlineIsAnError) {
+  for (const char* format : {"binary_little_endian", "ascii"}) {
+    std::string header = ply_header(format, "3", "1");
+    header.pop_back();
+    const std::string message = scene_error_of([&] { load_ply(write("cut.ply", header)); });
+    EXPECT_NE(message.find("cut.ply: line 9: end_header must end with a newline"),
+              std::string::npos)
+        << message;
+  }
+}
+
+// A header of a few bytes used to size arrays of gigabytes (std::bad_alloc, or RSS growing
+// until the machine swapped) before the body was found to be missing.
+TEST_F(MeshIoTest, PlyCountsTheBodyCannotHoldAreRejectedBeforeAllocating) {
+  std::string message = scene_error_of([&] {
+    load_ply(write("vertices.ply", ply_header("binary_little_endian", "1000000000", "1")));
+  });
+  EXPECT_NE(message.find("vertices.ply: line 3: 1000000000 instances of element 'vertex'"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("need at least 11.2 GiB of body, but the file has 0 bytes"),
+            std::string::npos)
+      << message;
+
+  // Text: each value takes at least a digit and a separator.
+  std::string body = "0 0 0\n1 0 0\n0 1 0\n";
+  message = scene_error_of(
+      [&] { load_ply(write("faces.ply", ply_header("ascii", "3", "100000000") + body)); });
+  EXPECT_NE(message.find("faces.ply: line 7: 100000000 instances of element 'face'"),
+            std::string::npos)
+      << message;
+
+  // Indices are 32-bit: a count beyond is refused before anything else is asked of it.
+  message = scene_error_of(
+      [&] { load_ply(write("many.ply", ply_header("binary_big_endian", "4294967297", "1"))); });
+  EXPECT_NE(message.find("line 3: 4294967297 vertices, more than the 4294967296"),
+            std::string::npos)
+      << message;
+}
+
+// The reader looped over the instances of an element without properties, consuming nothing:
+// 10^12 turns of nothing.
+TEST_F(MeshIoTest, PlyElementWithoutPropertiesIsAnError) {
+  const std::string header = ply_header("ascii", "3", "1");
+  const std::string path =
+      write("empty.ply", header.substr(0, header.find("end_header")) +
+                             "element nothing 1000000000000\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                             "3 0 1 2\n");
+  const std::string message = scene_error_of([&] { load_ply(path); });
+  EXPECT_NE(message.find("line 9: element 'nothing' has instances but no properties"),
+            std::string::npos)
+      << message;
+}
+
+// A list length of 4e9 sized the corner array at 16 GB before reading a single corner.
+TEST_F(MeshIoTest, PlyListLongerThanTheFileIsAnError) {
+  std::string binary =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+      "property uchar x\nproperty uchar y\nproperty uchar z\nelement face 1\n"
+      "property list uint int vertex_indices\nend_header\n";
+  binary += std::string(9, '\0');
+  put<uint32_t>(binary, 4000000000u, false);
+  for (int32_t i : {0, 1, 2}) put<int32_t>(binary, i, false);
+  std::string message = scene_error_of([&] { load_ply(write("list.ply", binary)); });
+  EXPECT_NE(message.find("list.ply: byte "), std::string::npos) << message;
+  EXPECT_NE(message.find("(face 0): a list of 4000000000 items for property 'vertex_indices' is "
+                         "longer than the rest of the file"),
+            std::string::npos)
+      << message;
+
+  const std::string text =
+      ply_header("ascii", "3", "1") + "0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n";
+  message = scene_error_of([&] { load_ply(write("list_text.ply", text)); });
+  EXPECT_NE(message.find("line 13 (face 0): a list of 4000000000 items"), std::string::npos)
+      << message;
+}
+
+TEST_F(MeshIoTest, PlyAsciiNotANumberIsAnError) {
+  const std::string path =
+      write("nan.ply", ply_header("ascii", "3", "1") + "0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n");
+  const std::string message = scene_error_of([&] { load_ply(path); });
+  EXPECT_NE(message.find("line 11 (vertex 1): expected a finite number for property 'x'"),
+            std::string::npos)
+      << message;
+}
+
+// Each vertex takes 3 bytes in the file and 12 in memory, so the file fits a budget its arrays
+// exceed.
+TEST_F(MeshIoTest, MeshBeyondTheMemoryBudgetIsAnError) {
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 1000\n"
+      "property char x\nproperty char y\nproperty char z\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n";
+  ply += std::string(3000, '\1');
+  put<uint8_t>(ply, 3, false);
+  for (int32_t i : {0, 1, 2}) put<int32_t>(ply, i, false);
+  const std::string path = write("budget.ply", ply);
+  EXPECT_EQ(load_ply(path).positions.size(), 1000u);
+
+  std::string message = scene_error_of([&] { load_ply(path, MemoryBudget{8 << 10}); });
+  EXPECT_NE(message.find("budget.ply: the arrays of 1000 vertices and 1 faces need 11.7 KiB, "
+                         "more than the memory budget of 8.0 KiB (--max-memory)"),
+            std::string::npos)
+      << message;
+  message = scene_error_of([&] { load_mesh(path, MemoryBudget{1000}); });
+  EXPECT_NE(message.find("budget.ply: cannot read mesh: the file's bytes need 3.1 KiB, more than "
+                         "the memory budget of 1000 bytes"),
+            std::string::npos)
+      << message;
+
+  std::string obj;
+  for (int i = 0; i < 300; ++i) obj += "v 0 0 0\n";
+  obj += "f 1 2 3\n";
+  message = scene_error_of([&] { load_obj(write("budget.obj", obj), MemoryBudget{8 << 10}); });
+  EXPECT_NE(message.find("budget.obj: the arrays of 300 vertices and 3 face corners need"),
+            std::string::npos)
+      << message;
+}
+
+// A FIFO blocked the reader until someone wrote to it (for ever), and a device such as
+// /dev/zero was read until memory ran out.
+TEST_F(MeshIoTest, OnlyRegularFilesAreRead) {
+  for (const char* name : {"fifo.ply", "fifo.obj"}) {
+    const std::string fifo = (dir_ / name).string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+    const std::string message = scene_error_of([&] { load_mesh(fifo); });
+    EXPECT_NE(message.find(fifo + ": cannot read mesh: it is a FIFO, not a regular file"),
+              std::string::npos)
+        << message;
+  }
+  const fs::path zero = dir_ / "zero.ply";
+  fs::create_symlink("/dev/zero", zero);
+  std::string message = scene_error_of([&] { load_mesh(zero.string()); });
+  EXPECT_NE(message.find("it is a character device, not a regular file"), std::string::npos)
+      << message;
+  fs::create_directory(dir_ / "folder.obj");
+  message = scene_error_of([&] { load_mesh((dir_ / "folder.obj").string()); });
+  EXPECT_NE(message.find("it is a directory, not a regular file"), std::string::npos) << message;
+}
+
+// tinyobjloader opened every mtllib file, so one naming a FIFO hung the load; snee uses no
+// materials from OBJ files, so none is opened.
+TEST_F(MeshIoTest, ObjMaterialLibrariesAreNeverOpened) {
+  const std::string fifo = (dir_ / "materials.mtl").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+  fs::create_symlink("/dev/zero", dir_ / "zero.mtl");
+  const TriangleMesh m = load_obj(
+      write("lib.obj",
+            "mtllib materials.mtl zero.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl wax\nf 1 2 3\n"));
+  EXPECT_EQ(m.triangle_count(), 1u);
+}
+
+// tinyobjloader reads a coordinate it cannot parse as 0, so these loaded as other meshes.
+TEST_F(MeshIoTest, ObjCoordinatesThatAreNotFiniteNumbersNameTheLine) {
+  const struct {
+    const char* vertex;
+    const char* expected;
+  } cases[] = {
+      {"v nan 0 0", "vertex 2 has a coordinate 'nan' that is not a finite number"},
+      {"v 0 -inf 0", "vertex 2 has a coordinate '-inf' that is not a finite number"},
+      {"v 0 0 1e39", "vertex 2 has a coordinate '1e39' that is not a finite number"},
+      {"v 0 zero 0", "vertex 2 has a coordinate 'zero' that is not a finite number"},
+      {"v 1 2", "vertex 2 has 2 coordinates (expected x y z)"},
+  };
+  for (const auto& c : cases) {
+    const std::string path = write("v.obj", std::string("# a triangle\r\nv 0 0 0\r\n") + c.vertex +
+                                                "\r\nv 0 1 0\r\nf 1 2 3\r\n");
+    const std::string message = scene_error_of([&] { load_obj(path); });
+    EXPECT_NE(message.find("v.obj: line 3: " + std::string(c.expected)), std::string::npos)
+        << message;
+  }
+  // What OBJ writers emit besides plain decimals still loads.
+  const TriangleMesh m =
+      load_obj(write("ok.obj", "v +1.5 -.5 2e-1\nv 1. 0 0 1\n\tv 0 1 0\nf 1 2 3\n"));
+  EXPECT_EQ(m.positions[0], Vec3(1.5f, -0.5f, 0.2f));
+}
+
+// atoi wrapped 4294967298 round to 2, so the face silently used vertex 2 instead.
+TEST_F(MeshIoTest, ObjCornerBeyondIntRangeIsAnError) {
+  const std::string path = write("wrap.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 3 4294967298/1/1\n");
+  const std::string message = scene_error_of([&] { load_obj(path); });
+  EXPECT_NE(message.find("wrap.obj: line 4: face corner '4294967298/1/1' does not start with a "
+                         "vertex number"),
+            std::string::npos)
+      << message;
+  // Relative (negative) corners count back from the latest vertex.
+  const TriangleMesh m = load_obj(write("relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n"));
+  const std::vector<uint32_t> expected = {0, 1, 2};
+  EXPECT_EQ(m.indices, expected);
+}
 
 TEST(MeshTopology, CubeIsClosedWithUnitVolume) {
   TriangleMesh cube = unit_cube();
