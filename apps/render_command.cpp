@@ -119,6 +119,20 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   c.add_flag("-q,--quiet", quiet_, "No progress output while rendering");
+  c.add_option_function<std::string>(
+       "--max-memory",
+       [this](const std::string& text) { options_.memory_budget.bytes = *parse_byte_size(text); },
+       "Most memory one large allocation may take: the scene file, a mesh's arrays, an "
+       "environment image, the film with its work buffers (e.g. 512M, 4G; K, M, G, T are powers "
+       "of 1024) [default: the physical memory, " +
+           format_bytes(options_.memory_budget.bytes) + "]")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            return parse_byte_size(text)
+                       ? std::string()
+                       : "expected a size such as 4G, 512M or 1000000, got '" + text + "'";
+          },
+          "SIZE"));
 
   const std::string snee = "SNEE (docs/snee-implementation.md)";
   c.add_option("--snee-probe", snee_probe_,
@@ -161,7 +175,7 @@ RenderCommand::RenderCommand(CLI::App& parent)
 }
 
 int RenderCommand::run(const RenderDistribution& distribution) const {
-  LoadedScene loaded = load_scene(scene_);
+  LoadedScene loaded = load_scene(scene_, options_.memory_budget);
   for (const std::string& warning : loaded.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
   Scene& scene = loaded.scene;

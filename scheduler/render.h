@@ -11,6 +11,7 @@
 #include "kernels/snee/snee_options.h"
 #include "kernels/snee_counters.h"
 #include "scene/film.h"
+#include "scene/memory_budget.h"
 #include "scene/scene.h"
 
 namespace snee {
@@ -46,6 +47,9 @@ struct RenderOptions {
   int shard = 0;
   int shard_count = 1;
   SneeOptions snee;  // open choices of docs/snee.md section 7 (integrator "snee")
+  // The film, sample buffers and workspaces together must fit, or render() refuses before
+  // allocating any of them.
+  MemoryBudget memory_budget;
 };
 
 struct Progress {
@@ -96,7 +100,8 @@ struct RenderResult {
   bool complete = true;  // false when stop_requested cut the render short
 };
 
-// Throws std::invalid_argument for an unknown integrator or invalid options.
+// Throws std::invalid_argument for an unknown integrator or invalid options, and when the render
+// would need more memory than options.memory_budget.
 RenderResult render(const Scene& scene, const RenderOptions& options,
                     const RenderHooks& hooks = {});
 
