@@ -29,9 +29,9 @@ void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQue
   DielectricParams lane_interface;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t s = queue[k];
-    const Vec3 p = state.origin(s) + state.direction(s) * state.hit_t[s];
     const uint32_t geom = state.hit_geom[s];
-    const Vec3 normal = ctx.embree->normal(geom, state.hit_prim[s], p);
+    const auto [p, normal] = ctx.embree->surface_point(
+        geom, state.hit_prim[s], state.origin(s) + state.direction(s) * state.hit_t[s]);
     const SurfaceInfo& info = ctx.surfaces[geom];
     if (info.kind == MaterialKind::kDielectric) lane_interface = info.dielectric;
     out.px[k] = p.x, out.py[k] = p.y, out.pz[k] = p.z;

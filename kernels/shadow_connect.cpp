@@ -59,8 +59,7 @@ void trace_tracked_segments(const KernelContext& ctx, StageQueues& q, KernelCoun
         }
         const uint32_t geom = batch.geom(b);
         const SurfaceInfo& info = ctx.surfaces[geom];
-        const Vec3 p = origins[i] + d * t;
-        const Vec3 n = ctx.embree->normal(geom, batch.prim(b), p);
+        const auto [p, n] = ctx.embree->surface_point(geom, batch.prim(b), origins[i] + d * t);
         bool passes = info.kind == MaterialKind::kNull;
         if (!passes && pass_dielectrics && info.kind == MaterialKind::kDielectric) {
           // Straight-line approximation: the ray goes through unbent, weighted by Fresnel

@@ -60,8 +60,8 @@ void snee_probe(const KernelContext& ctx, PathState& state, StageQueues& q,
     // is a failed probe (pdf 0 for both strategies; the path tracer still covers that
     // transport).
     const SurfaceInfo& info = ctx.surfaces[geom];
-    const Vec3 x_k = rays.origin(i) + rays.direction(i) * rays.tfar(i);
-    const Vec3 n_k = ctx.embree->normal(geom, rays.prim(i), x_k);
+    const auto [x_k, n_k] = ctx.embree->surface_point(
+        geom, rays.prim(i), rays.origin(i) + rays.direction(i) * rays.tfar(i));
     if (info.kind != MaterialKind::kDielectric || info.interior_medium != state.medium[s] ||
         dot(rays.direction(i), n_k) <= 0) {
       counters.count(SneeCounter::kProbeOtherSurface);

@@ -1,6 +1,7 @@
 #include "scene/embree_scene.h"
 
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -33,7 +34,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
 
   bounds_min_ = Vec3(kInfinity);
   bounds_max_ = Vec3(-kInfinity);
-  face_normals_.resize(scene.shapes.size());
+  face_planes_.resize(scene.shapes.size());
   for (size_t s = 0; s < scene.shapes.size(); ++s) {
     const Shape& shape = scene.shapes[s];
     RTCGeometry geom = nullptr;
@@ -64,15 +65,22 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
           rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                   3 * sizeof(uint32_t), mesh.triangle_count()));
       std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(uint32_t));
-      auto& normals = face_normals_[s];
-      normals.resize(mesh.triangle_count());
+      auto& planes = face_planes_[s];
+      planes.resize(mesh.triangle_count());
       for (size_t t = 0; t < mesh.triangle_count(); ++t) {
         const Vec3 p0 = mesh.positions[mesh.indices[3 * t]];
         const Vec3 p1 = mesh.positions[mesh.indices[3 * t + 1]];
         const Vec3 p2 = mesh.positions[mesh.indices[3 * t + 2]];
         const Vec3 c = cross(p1 - p0, p2 - p0);
         const float len = length(c);
-        normals[t] = len > 0 ? c / len : Vec3(0, 0, 1);
+        const Vec3 n = len > 0 ? c / len : Vec3(0, 0, 1);
+        // The plane's distance from the centroid, in double, so that projecting onto it adds
+        // no more than the float rounding of the result.
+        double distance = 0;
+        for (const Vec3& corner : {p0, p1, p2})
+          distance +=
+              (double{n.x} * corner.x + double{n.y} * corner.y + double{n.z} * corner.z) / 3.0;
+        planes[t] = {n, static_cast<float>(distance)};
       }
     }
     rtcCommitGeometry(geom);
@@ -89,7 +97,8 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
   if (scene.shapes.empty()) bounds_min_ = bounds_max_ = Vec3(0.0f);
   const float extent =
       max_component(vmax(vmax(bounds_max_, -bounds_min_), bounds_max_ - bounds_min_));
-  epsilon_ = 1e-4f * std::max(1.0f, extent);
+  epsilon_ = kClearanceUlps * std::numeric_limits<float>::epsilon() *
+             std::max(extent, std::numeric_limits<float>::min());
 }
 
 EmbreeScene::~EmbreeScene() {
@@ -173,7 +182,17 @@ bool EmbreeScene::occluded1(Vec3 org, Vec3 dir, float tnear, float tfar) const {
 Vec3 EmbreeScene::normal(uint32_t geom, uint32_t prim, Vec3 p) const {
   const Shape& shape = description_->shapes[geom];
   if (shape.kind == ShapeKind::kSphere) return normalize(p - shape.center);
-  return face_normals_[geom][prim];
+  return face_planes_[geom][prim].n;
+}
+
+SurfacePoint EmbreeScene::surface_point(uint32_t geom, uint32_t prim, Vec3 approx) const {
+  const Shape& shape = description_->shapes[geom];
+  if (shape.kind == ShapeKind::kSphere) {
+    const Vec3 n = normalize(approx - shape.center);
+    return {shape.center + n * shape.radius, n};
+  }
+  const FacePlane& plane = face_planes_[geom][prim];
+  return {approx - plane.n * (dot(plane.n, approx) - plane.distance), plane.n};
 }
 
 }  // namespace snee

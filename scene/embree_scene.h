@@ -14,6 +14,9 @@
 namespace snee {
 
 inline constexpr uint32_t kInvalidId = RTC_INVALID_GEOMETRY_ID;
+// Ray-origin clearance in units of float epsilon times the scene's extent (EmbreeScene::
+// ray_epsilon).
+inline constexpr float kClearanceUlps = 4.0f;
 
 // Non-owning views of SoA ray arrays (each of length >= n, 16-byte aligned).
 struct RayArrays {
@@ -32,6 +35,12 @@ class EmbreeScene;
 // The raw-traversal benchmark (embree_throughput.h) times Embree's own calls on this scene.
 EmbreeThroughput measure_embree_throughput(const Scene& scene, const EmbreeScene& embree,
                                            size_t rays, int repeats);
+
+// A point on a surface and its outward geometric normal (unit).
+struct SurfacePoint {
+  Vec3 p;
+  Vec3 n;
+};
 
 class EmbreeScene {
  public:
@@ -54,7 +63,16 @@ class EmbreeScene {
 
   // Outward geometric normal (unit) at point p on primitive prim of shape geom.
   Vec3 normal(uint32_t geom, uint32_t prim, Vec3 p) const;
-  // Offset for ray origins leaving a surface, proportional to the scene's extent.
+  // The point of primitive prim of shape geom nearest `approx` (a ray's origin + t direction,
+  // whose error grows with the ray's length): projected onto the triangle's plane or the sphere,
+  // so that it lies within a few ulps of the scene's extent of the surface, however far the ray
+  // came from.
+  SurfacePoint surface_point(uint32_t geom, uint32_t prim, Vec3 approx) const;
+  // Clearance that ray origins keep from a surface: a bound on the floating-point error of a
+  // surface point from surface_point and of Embree's own sign of the distance to the surface
+  // (kClearanceUlps ulps of the scene's extent; measured in docs/performance.md). A ray that
+  // starts this far from a surface on one side never finds that surface behind it, nor misses
+  // it ahead.
   float ray_epsilon() const { return epsilon_; }
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
@@ -65,7 +83,11 @@ class EmbreeScene {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   const Scene* description_;
-  std::vector<std::vector<Vec3>> face_normals_;  // per mesh shape
+  struct FacePlane {
+    Vec3 n;          // outward unit normal
+    float distance;  // dot(n, p) for every point p of the face
+  };
+  std::vector<std::vector<FacePlane>> face_planes_;  // per mesh shape
   float epsilon_ = 1e-4f;
   Vec3 bounds_min_, bounds_max_;
 };

@@ -62,11 +62,11 @@ void generate(const KernelContext& ctx, UnitWorkspace& ws) {
       while (ws.next_sample < total && !ws.free_slots.empty()) {
         const size_t local_pixel = ws.next_sample % pixels;
         const uint32_t sample = unit.sample_begin + static_cast<uint32_t>(ws.next_sample / pixels);
-        const int x = unit.x0 + static_cast<int>(local_pixel) % tile_w;
-        const int y = unit.y0 + static_cast<int>(local_pixel) / tile_w;
+        const int x = unit.x0 + static_cast<int>(local_pixel % static_cast<size_t>(tile_w));
+        const int y = unit.y0 + static_cast<int>(local_pixel / static_cast<size_t>(tile_w));
         ws.new_slots.push_back(ws.free_slots.back());
         ws.free_slots.pop_back();
-        ws.new_pixels.push_back(static_cast<uint32_t>(y * ctx.width + x));
+        ws.new_pixels.push_back(static_cast<uint32_t>(row_major_index(x, y, ctx.width)));
         ws.new_samples.push_back(sample);
         ++ws.next_sample;
       }
@@ -94,8 +94,7 @@ void retire(const KernelContext& ctx, UnitWorkspace& ws) {
     const uint32_t pixel = state.pixel[s];
     const int x = static_cast<int>(pixel % static_cast<uint32_t>(ctx.width)) - unit.x0;
     const int y = static_cast<int>(pixel / static_cast<uint32_t>(ctx.width)) - unit.y0;
-    ws.out[(state.sample[s] - unit.sample_begin) * pixels + static_cast<size_t>(y * tile_w + x)] =
-        l;
+    ws.out[(state.sample[s] - unit.sample_begin) * pixels + row_major_index(x, y, tile_w)] = l;
     ws.free_slots.push_back(s);
   }
   ws.active -= retired.size();

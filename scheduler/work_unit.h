@@ -15,10 +15,17 @@
 
 namespace snee {
 
+// Index of pixel (x, y) in a row-major image `width` pixels wide, formed in 64 bits: y * width
+// overflows int from 2^31 pixels on (a 46341^2 image). Scenes are at most 65536 pixels per edge,
+// so a film index, at most 2^32 - 1, still fits the 32 bits path state keeps per pixel.
+inline uint64_t row_major_index(int x, int y, int width) {
+  return static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x);
+}
+
 struct WorkUnit {
   int x0, y0, x1, y1;  // pixel rectangle [x0, x1) x [y0, y1)
   uint32_t sample_begin, sample_end;
-  int pixel_count() const { return (x1 - x0) * (y1 - y0); }
+  int64_t pixel_count() const { return int64_t{x1 - x0} * (y1 - y0); }
   size_t sample_count() const {
     return static_cast<size_t>(pixel_count()) * (sample_end - sample_begin);
   }

@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "kernels/bsdf/dielectric.h"
 #include "kernels/simd/frame_batch.h"
 #include "kernels/simd/fresnel_batch.h"
 
@@ -16,7 +17,9 @@ namespace snee::simd {
 
 struct DielectricLanes {
   FloatBatch eta, alpha;
-  BoolBatch delta() const { return alpha == FloatBatch(0.0f) || eta == FloatBatch(1.0f); }
+  BoolBatch delta() const {
+    return !(alpha >= FloatBatch(kSmoothRoughness)) || eta == FloatBatch(1.0f);
+  }
 };
 
 struct BsdfSampleBatch {
