@@ -49,6 +49,7 @@ bool join_shards(RenderResult& result, MPI_Comm comm) {
   s.seconds = times[0];
   s.sampling_seconds = times[1];
   result.film.meta.render_seconds = s.seconds;
+  result.film.meta.nonfinite_samples = s.nonfinite_samples;
   result.film.meta.min_spp = least[0];
   result.complete = least[1] == 1;
   return true;
