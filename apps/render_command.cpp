@@ -1,5 +1,6 @@
 #include "apps/render_command.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -197,7 +198,12 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
     };
   }
   const InterruptRequest interrupt;
-  hooks.stop_requested = [&interrupt] { return interrupt.requested(); };
+  hooks.stop_requested = [&] {
+    const bool here = interrupt.requested();
+    const bool elsewhere =
+        distribution.stop_together && distribution.stop_together(interrupt.exit_status());
+    return here || elsewhere;
+  };
   RenderResult result;
   try {
     result = render(scene, options, hooks);
@@ -207,7 +213,9 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
                                 options.integrator + "': " + e.what());
   }
   bar.finish();
-  if (distribution.join && !distribution.join(result)) return 0;
+  // An image cut short without a signal here was cut short elsewhere (or failed): never 0.
+  int exit_status = result.complete ? 0 : std::max(1, interrupt.exit_status());
+  if (distribution.join && !distribution.join(result, exit_status)) return exit_status;
 
   warn_about_nonfinite_samples(result.stats);
   write_images(result.film, exr, png);
@@ -226,7 +234,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   }
   std::printf("wrote %s\nwrote %s\n", exr.c_str(), png.c_str());
   if (!stats_.empty()) std::printf("wrote %s\n", stats_.c_str());
-  return result.complete ? 0 : interrupt.exit_status();
+  return exit_status;
 }
 
 }  // namespace snee
