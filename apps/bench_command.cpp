@@ -9,6 +9,7 @@
 
 #include "apps/bench_report.h"
 #include "apps/bench_workloads.h"
+#include "apps/option_checks.h"
 #include "apps/resolution.h"
 #include "apps/stats_json.h"
 #include "apps/thread_counts.h"
@@ -100,7 +101,7 @@ BenchCommand::BenchCommand(CLI::App& parent)
       ->capture_default_str();
   c.add_option("--queue-capacity", queue_capacity_,
                "Path slots per work unit of the local and global schedules")
-      ->check(CLI::Range(16, 1 << 20))
+      ->check(integer_in_range(kMinQueueCapacity, kMaxQueueCapacity))
       ->capture_default_str();
   c.add_flag("--quick", quick_,
              "Tiny smoke run (16x16, 1 spp, 1 repeat, no dragon) unless options say otherwise");
@@ -112,7 +113,7 @@ BenchCommand::BenchCommand(CLI::App& parent)
 
 int BenchCommand::run() const {
   Settings settings;
-  settings.threads = *parse_thread_counts(threads_);
+  settings.threads = capped_thread_counts(*parse_thread_counts(threads_));
   settings.spp = quick_ && !given("--spp") ? 1 : spp_;
   settings.repeats = quick_ && !given("--repeats") ? 1 : repeats_;
   settings.resolution = *parse_resolution(quick_ && !given("--resolution") ? "16x16" : resolution_);

@@ -8,6 +8,7 @@
 
 #include "apps/contact_sheet.h"
 #include "apps/image_error.h"
+#include "apps/option_checks.h"
 #include "apps/resolution.h"
 #include "apps/stats_json.h"
 #include "scene/scene_loader.h"
@@ -24,6 +25,7 @@ constexpr uint32_t kReferenceSeedOffset = 1000003;
 // Pilot renders double their spp from this until one takes this share of the budget.
 constexpr int kFirstPilotSpp = 2;
 constexpr double kPilotShare = 0.1;
+constexpr int kMaxEqualTimeSpp = 1 << 30;
 
 struct Entry {
   std::string integrator;
@@ -66,7 +68,9 @@ int equal_time_spp(const Scene& scene, RenderOptions options, double seconds, bo
                              ? (time - previous_time) / (spp - previous_spp)
                              : time / spp;
   const double fixed = std::max(0.0, time - per_spp * spp);
-  return std::max(1, static_cast<int>(std::floor((seconds - fixed) / per_spp)));
+  // In double first: a long budget over a cheap sample would overflow an int.
+  const double fitting = std::floor((seconds - fixed) / per_spp);
+  return static_cast<int>(std::clamp(fitting, 1.0, static_cast<double>(kMaxEqualTimeSpp)));
 }
 
 }  // namespace
@@ -84,7 +88,7 @@ CompareCommand::CompareCommand(CLI::App& parent)
       ->check(CLI::IsMember({"pt", "snee", "sla"}))
       ->capture_default_str();
   c.add_option("--time", seconds_, "Seconds per integrator (equal time)")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive())
       ->capture_default_str();
   c.add_option("--spp", spp_, "Equal samples per pixel instead of equal time")
       ->check(CLI::PositiveNumber);
@@ -100,7 +104,7 @@ CompareCommand::CompareCommand(CLI::App& parent)
   c.add_option("--resolution", resolution_, "Image size WxH, overriding the camera's")
       ->check(resolution_validator());
   c.add_option("--threads", threads_, "Worker threads, 0 = all")
-      ->check(CLI::NonNegativeNumber)
+      ->check(integer_at_least(0))
       ->capture_default_str();
   c.add_option("--seed", seed_, "Seed of the compared renders")->capture_default_str();
   c.add_option("-o,--output", output_, "Output directory")->default_str("out/compare-<scene>");
@@ -120,7 +124,7 @@ int CompareCommand::run() const {
   fs::create_directories(dir);
 
   RenderOptions base;
-  base.threads = threads_;
+  base.threads = capped_threads(threads_);
   base.seed = seed_;
   base.max_depth = scene.render.max_depth;
 

@@ -1,7 +1,9 @@
-// Turns the first SIGINT (Ctrl-C) or SIGTERM into a request to stop, so a render can finish
-// the work units in flight and write what it has; the handler then reverts to the default, so
-// a second signal ends the process at once as usual.
+// Turns the first SIGINT (Ctrl-C) or SIGTERM into a request to stop, so a render can drop the
+// work units in flight and write what it has; a second signal ends the process at once as
+// usual, removing the partial file being written, if any (FileInFlight).
 #pragma once
+
+#include <string>
 
 namespace snee {
 
@@ -15,6 +17,16 @@ class InterruptRequest {
   bool requested() const;
   // The shell's exit status for the signal received (128 + its number); 0 if none.
   int exit_status() const;
+};
+
+// While one exists, `path` is the partial file being written, which a second signal removes
+// before ending the process. One at a time (the render's writes never overlap).
+class FileInFlight {
+ public:
+  explicit FileInFlight(const std::string& path);
+  ~FileInFlight();
+  FileInFlight(const FileInFlight&) = delete;
+  FileInFlight& operator=(const FileInFlight&) = delete;
 };
 
 }  // namespace snee

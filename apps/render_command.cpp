@@ -1,15 +1,16 @@
 #include "apps/render_command.h"
 
-#include <charconv>
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
-#include <limits>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 
 #include "apps/interrupt_request.h"
+#include "apps/option_checks.h"
+#include "apps/output_files.h"
 #include "apps/progress_bar.h"
 #include "apps/resolution.h"
 #include "apps/stats_json.h"
@@ -28,42 +29,17 @@ std::string output_name(const Scene& scene, const std::string& spec) {
   return fs::path(spec).stem().string();
 }
 
-// Replaces the EXR and its PNG preview as a whole: each is written beside its final name and
-// renamed over it, so a reader (or a render stopped mid-write) never sees a half-written file.
-void write_images(const Film& film, const fs::path& exr, const fs::path& png) {
-  const auto replace = [](const fs::path& path, const auto& write) {
-    fs::path partial = path;
-    partial.replace_extension(".partial" + path.extension().string());
-    write(partial.string());
-    std::error_code ec;
-    fs::rename(partial, path, ec);
-    if (ec) {
-      throw std::runtime_error("cannot replace '" + path.string() + "' with '" + partial.string() +
-                               "': " + ec.message());
-    }
-  };
-  replace(exr, [&](const std::string& p) { write_exr(film, p); });
-  replace(png, [&](const std::string& p) { write_preview(film, p); });
-}
-
-// CLI11's own range checks print the bounds as doubles with hundreds of digits.
-template <typename Int>
-CLI::Validator integer_at_least(Int min) {
-  const std::string expected = "an integer from " + std::to_string(min) + " to " +
-                               std::to_string(std::numeric_limits<Int>::max());
-  return CLI::Validator(
-      [min, expected](const std::string& text) {
-        Int value{};
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-        return ec == std::errc() && end == text.data() + text.size() && value >= min
-                   ? std::string()
-                   : "expected " + expected + ", got '" + text + "'";
-      },
-      min > 0 ? "POSITIVE" : "NONNEGATIVE");
-}
-
-void create_parent_directory(const fs::path& file) {
-  if (file.has_parent_path()) fs::create_directories(file.parent_path());
+// Non-finite samples count as 0 in the image, which darkens it without a trace: say so.
+void warn_about_nonfinite_samples(const RenderStats& stats) {
+  if (stats.nonfinite_samples == 0) return;
+  const double percent = stats.paths > 0 ? 100.0 * static_cast<double>(stats.nonfinite_samples) /
+                                               static_cast<double>(stats.paths)
+                                         : 100.0;
+  std::fprintf(stderr,
+               "warning: %llu of %llu samples (%.3g%%) were not finite (NaN or infinite) and count "
+               "as 0 in the image\n",
+               static_cast<unsigned long long>(stats.nonfinite_samples),
+               static_cast<unsigned long long>(stats.paths), percent);
 }
 
 }  // namespace
@@ -76,7 +52,9 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->capture_default_str();
   c.add_option("--spp", options_.spp, "Samples per pixel [default: the scene's, else 64]")
       ->check(integer_at_least(1));
-  c.add_option("--threads", options_.threads, "Worker threads, 0 = all hardware threads")
+  c.add_option("--threads", options_.threads,
+               "Worker threads, 0 = all hardware threads; at most " +
+                   std::to_string(kMaxThreadsPerHardwareThread) + " per hardware thread")
       ->check(integer_at_least(0))
       ->capture_default_str();
   c.add_option("--seed", options_.seed, "Random seed [default: the scene's, else 0]")
@@ -100,7 +78,7 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->check(integer_at_least(0));
   c.add_option("--queue-capacity", options_.queue_capacity,
                "Path slots per work unit (batch size of every stage)")
-      ->check(integer_at_least(1))
+      ->check(integer_in_range(kMinQueueCapacity, kMaxQueueCapacity))
       ->capture_default_str();
   c.add_option("--tile-size", options_.tile_size, "Work-unit tile edge in pixels")
       ->check(integer_at_least(1))
@@ -116,7 +94,7 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->capture_default_str();
   c.add_option("--checkpoint", checkpoint_seconds_,
                "Also write the image so far every SECONDS while rendering (0: only at the end)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(finite_at_least(0))
       ->capture_default_str();
   c.add_flag("-q,--quiet", quiet_, "No progress output while rendering");
   c.add_option_function<std::string>(
@@ -143,13 +121,13 @@ RenderCommand::RenderCommand(CLI::App& parent)
   c.add_option("--snee-distance-mix", options_.snee.c_exponential,
                "Probability that top-to-bottom draws the distance by free flight rather than "
                "equiangularly")
-      ->check(CLI::Range(0.0f, 1.0f))
+      ->check(finite_in_range(0, 1))
       ->capture_default_str()
       ->group(snee);
   c.add_option("--snee-joint-mix", options_.snee.c_joint,
                "Probability that bottom-to-top draws the direction from the geometric "
                "joint-importance lobe rather than the phase function (g != 0 only)")
-      ->check(CLI::Range(0.0f, 1.0f))
+      ->check(finite_in_range(0, 1))
       ->capture_default_str()
       ->group(snee);
   c.add_option("--snee-heuristic", snee_heuristic_, "Multi-sample MIS heuristic: balance or power")
@@ -186,6 +164,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   options.snee.heuristic =
       snee_heuristic_ == "power" ? MisHeuristic::kPower : MisHeuristic::kBalance;
   options.snee.enabled = parse_strategy_set(snee_strategies_);
+  options.threads = capped_threads(options.threads);
   options.shard = distribution.shard;
   options.shard_count = distribution.shard_count;
   // A checkpoint would need every process at once; interrupts still keep what each has done.
@@ -207,18 +186,38 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   scene.name = name;  // render() stamps it on the film and on every checkpoint
   const fs::path exr = output_.empty() ? fs::path("out") / (name + ".exr") : fs::path(output_);
   const fs::path png = fs::path(exr).replace_extension(".png");
-  create_parent_directory(exr);
-  if (!stats_.empty()) create_parent_directory(stats_);
+  // Only the process that writes checks, before any sampling, so a bad destination costs
+  // nothing; each check leaves the directory it needs in place.
+  const bool writes = distribution.shard == 0;
+  if (writes) {
+    const int w = scene.camera.width, h = scene.camera.height;
+    check_destination(exr, exr_bytes_bound(w, h) + png_bytes_bound(w, h));
+    check_destination(png, 0);
+    if (!stats_.empty()) check_destination(stats_, 0);
+  }
 
   ProgressBar bar(stderr);
   RenderHooks hooks;
   if (shows_progress) hooks.progress = [&bar](const Progress& p) { bar.update(p); };
   if (checkpoint_seconds_ > 0) {
     hooks.checkpoint_seconds = checkpoint_seconds_;
-    hooks.checkpoint = [&](const Film& film) { write_images(film, exr, png); };
+    // A failed checkpoint (disk full, directory removed) loses no samples: the render goes
+    // on and the next checkpoint tries again; only the final write decides the exit code.
+    hooks.checkpoint = [&](const Film& film) {
+      try {
+        write_images(film, exr, png);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "warning: checkpoint not written, rendering goes on: %s\n", e.what());
+      }
+    };
   }
   const InterruptRequest interrupt;
-  hooks.stop_requested = [&interrupt] { return interrupt.requested(); };
+  hooks.stop_requested = [&] {
+    const bool here = interrupt.requested();
+    const bool elsewhere =
+        distribution.stop_together && distribution.stop_together(interrupt.exit_status());
+    return here || elsewhere;
+  };
   RenderResult result;
   try {
     result = render(scene, options, hooks);
@@ -228,8 +227,11 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
                                 options.integrator + "': " + e.what());
   }
   bar.finish();
-  if (distribution.join && !distribution.join(result)) return 0;
+  // An image cut short without a signal here was cut short elsewhere (or failed): never 0.
+  int exit_status = result.complete ? 0 : std::max(1, interrupt.exit_status());
+  if (distribution.join && !distribution.join(result, exit_status)) return exit_status;
 
+  warn_about_nonfinite_samples(result.stats);
   write_images(result.film, exr, png);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
   if (result.complete) {
@@ -246,7 +248,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   }
   std::printf("wrote %s\nwrote %s\n", exr.c_str(), png.c_str());
   if (!stats_.empty()) std::printf("wrote %s\n", stats_.c_str());
-  return result.complete ? 0 : interrupt.exit_status();
+  return exit_status;
 }
 
 }  // namespace snee

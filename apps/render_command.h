@@ -14,12 +14,17 @@
 namespace snee {
 
 // How a render split across processes (apps/mpi/) shares the work: this process renders shard
-// `shard` of `shard_count` (RenderOptions), and `join` gathers every shard's result into one
-// process's, returning false on the processes that write nothing. The default is one process.
+// `shard` of `shard_count` (RenderOptions). `stop_together` is asked while rendering with this
+// process's exit status for a signal so far (0 if none, else 128 + its number), tells the
+// others of one, and says whether any process has had one, so all stop together. `join`
+// gathers every shard's result into one process's and turns `exit_status` (this process's)
+// into the whole render's; it returns false on the processes that write nothing. The default
+// is one process.
 struct RenderDistribution {
   int shard = 0;
   int shard_count = 1;
-  std::function<bool(RenderResult&)> join;
+  std::function<bool(int exit_status)> stop_together;
+  std::function<bool(RenderResult&, int& exit_status)> join;
 };
 
 class RenderCommand {

@@ -71,7 +71,7 @@ int ScaleCommand::run() const {
   options.max_depth = scene.render.max_depth;
   options.integrator = given("--integrator") ? integrator_ : scene.render.integrator;
   options.schedule = schedule_;
-  const std::vector<int> threads = *parse_thread_counts(threads_);
+  const std::vector<int> threads = capped_thread_counts(*parse_thread_counts(threads_));
 
   std::printf("snee scale %s: %s, %s schedule, %dx%d, %d spp, %d repeat(s), %u hardware threads\n",
               scene_.c_str(), options.integrator.c_str(), schedule_.c_str(), scene.camera.width,

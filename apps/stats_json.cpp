@@ -63,6 +63,7 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"stage_seconds", stage_seconds_json(stats)},
       {"rays", ray_counts_json(stats)},
       {"paths", stats.paths},
+      {"nonfinite_samples", stats.nonfinite_samples},
       {"mrays_per_second", stats.mrays_per_second()},
       {"path_state_bytes_per_slot", stats.path_state_bytes_per_slot},
       {"queue_occupancy", stats.queue_occupancy},

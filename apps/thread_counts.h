@@ -9,8 +9,11 @@
 
 namespace snee {
 
-// "1,2,4" -> {1, 2, 4}; nullopt unless every entry is a positive integer (at most 1024).
+// "1,2,4" -> {1, 2, 4}; nullopt unless every entry is a positive integer.
 std::optional<std::vector<int>> parse_thread_counts(const std::string& text);
+// Each count capped at max_render_threads() (scheduler/render.h), with a warning for each
+// one that was above it (option_checks.h, capped_threads).
+std::vector<int> capped_thread_counts(const std::vector<int>& counts);
 // The check of `--threads LIST`.
 CLI::Validator thread_counts_validator();
 

@@ -17,6 +17,9 @@ struct FilmMetadata {
   uint32_t seed = 0;
   double render_seconds = 0;
   std::string scene;
+  // Samples that were NaN or infinite and went into the image as 0 (a sign of a numerical
+  // fault: a correct image has none).
+  uint64_t nonfinite_samples = 0;
 };
 
 struct Film {

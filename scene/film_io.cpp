@@ -5,7 +5,8 @@
 // "variance.B" (variance of the mean), all FLOAT; metadata attributes snee:spp (int),
 // snee:min_spp (int, the fewest samples of any pixel: below snee:spp in a partial image),
 // snee:integrator (string), snee:seed (string, decimal: EXR has no unsigned 32-bit attribute),
-// snee:render_seconds (double), snee:scene (string), snee:version (string) and "Software".
+// snee:render_seconds (double), snee:scene (string), snee:nonfinite_samples (string, decimal:
+// EXR has no 64-bit integer attribute), snee:version (string) and "Software".
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -80,6 +81,7 @@ void write_exr(const Film& film, const std::string& path) {
   spec.attribute("snee:seed", std::to_string(film.meta.seed));
   spec.attribute("snee:render_seconds", OIIO::TypeDesc::DOUBLE, &film.meta.render_seconds);
   spec.attribute("snee:scene", film.meta.scene);
+  spec.attribute("snee:nonfinite_samples", std::to_string(film.meta.nonfinite_samples));
 
   std::vector<float> pixels;
   pixels.reserve(pixel_count(film) * nchannels);
@@ -143,6 +145,11 @@ Film read_exr(const std::string& path) {
   if (std::from_chars(seed.data(), seed.data() + seed.size(), film.meta.seed).ec != std::errc())
     fail("cannot read image", path, "snee:seed is not an unsigned integer");
   film.meta.scene = spec.get_string_attribute("snee:scene");
+  const std::string_view nonfinite = spec.get_string_attribute("snee:nonfinite_samples", "0");
+  if (std::from_chars(nonfinite.data(), nonfinite.data() + nonfinite.size(),
+                      film.meta.nonfinite_samples)
+          .ec != std::errc())
+    fail("cannot read image", path, "snee:nonfinite_samples is not an unsigned integer");
   spec.getattribute("snee:render_seconds", OIIO::TypeDesc::DOUBLE, &film.meta.render_seconds);
   return film;
 }

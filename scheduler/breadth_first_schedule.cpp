@@ -26,7 +26,8 @@ void run_units_breadth_first(const KernelContext& ctx, const UnitSource& source,
     }
   };
   refill();
-  while (!busy.empty()) {
+  // A stop drops the units in the lanes at the next turn (render.h, RenderHooks).
+  while (!busy.empty() && !source.progress.stop_requested()) {
     for (const Stage stage : kStageLoop) {
       tbb::parallel_for(size_t{0}, busy.size(), [&](size_t i) {
         set_flush_to_zero();

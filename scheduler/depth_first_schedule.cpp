@@ -17,7 +17,13 @@ void run_units_depth_first(const KernelContext& ctx, const UnitSource& source, i
         try {
           while (const std::optional<size_t> k = source.window.take(/*wait=*/true)) {
             const WorkUnit unit = source.grid.unit(*k);
-            run_work_unit(ctx, unit, ws, source.film.buffer(*k));
+            // A stop drops the unit in flight rather than waiting for it: with many threads
+            // per core, or costly units, finishing them could take minutes.
+            if (!run_work_unit(ctx, unit, ws, source.film.buffer(*k),
+                               [&] { return source.progress.stop_requested(); })) {
+              source.window.abort();
+              break;
+            }
             source.unit_done(*k, ws);
           }
         } catch (...) {

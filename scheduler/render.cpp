@@ -8,6 +8,7 @@
 #include <ctime>
 #include <memory>
 #include <stdexcept>
+#include <string>
 
 #include "kernels/lights/light_table.h"
 #include "kernels/simd/arch.h"
@@ -46,15 +47,23 @@ LaneCount RenderStats::all_simd_lanes() const {
   return all;
 }
 
+int max_render_threads() {
+  return kMaxThreadsPerHardwareThread * tbb::info::default_concurrency();
+}
+
 namespace {
 
 void validate(const Scene& scene, const RenderOptions& o) {
   if (o.spp < 1) throw std::invalid_argument("spp must be at least 1");
-  if (o.threads < 0) throw std::invalid_argument("threads must be 0 (all) or positive");
+  if (o.threads < 0 || o.threads > max_render_threads())
+    throw std::invalid_argument("threads must be 0 (all) or from 1 to " +
+                                std::to_string(max_render_threads()));
   // Depth 0 is allowed, as in the scene format: paths end at their first hit (camera rays and
   // directly visible emission only).
   if (o.max_depth < 0) throw std::invalid_argument("max depth must not be negative");
-  if (o.queue_capacity < 16) throw std::invalid_argument("queue capacity must be at least 16");
+  if (o.queue_capacity < kMinQueueCapacity || o.queue_capacity > kMaxQueueCapacity)
+    throw std::invalid_argument("queue capacity must be from " + std::to_string(kMinQueueCapacity) +
+                                " to " + std::to_string(kMaxQueueCapacity));
   if (o.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
   if (o.samples_per_unit < 1) throw std::invalid_argument("samples per unit must be at least 1");
   if (o.shard_count < 1 || o.shard < 0 || o.shard >= o.shard_count)
@@ -208,6 +217,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   stats.simd_lanes = counters.lanes;
   stats.simd_width = simd::kLanes;
   film.meta.render_seconds = stats.seconds;
+  film.meta.nonfinite_samples = stats.nonfinite_samples;
   return result;
 }
 

@@ -32,10 +32,22 @@ enum class Stage : int {
 const char* ray_kind_name(RayKind k);
 const char* stage_name(Stage s);
 
+// Limits render() enforces; the command line checks the same constants.
+inline constexpr int kMinQueueCapacity = 16;  // below it a SIMD batch is mostly empty lanes
+// 65536 slots of path state are ~12 MiB per thread, far more than a unit's paths need.
+inline constexpr int kMaxQueueCapacity = 1 << 16;
+// More threads than hardware threads only add switching to a CPU-bound render, while every
+// thread costs a workspace and a share of the sample buffers (~1 MiB), and each must be
+// scheduled once to notice a stop; this many per hardware thread leaves room for
+// oversubscription experiments without letting a typo start tens of thousands.
+inline constexpr int kMaxThreadsPerHardwareThread = 4;
+// kMaxThreadsPerHardwareThread x the hardware threads this process may use.
+int max_render_threads();
+
 struct RenderOptions {
   int spp = 64;
   uint32_t seed = 0;
-  int threads = 0;  // 0 = all hardware threads
+  int threads = 0;  // 0 = all hardware threads; at most max_render_threads()
   std::string integrator = "pt";
   int max_depth = 1024;
   int queue_capacity = 256;  // path slots per work unit (batch size of every stage)
@@ -69,8 +81,11 @@ struct RenderHooks {
   // the fewest), every `checkpoint_seconds` of wall clock; the other workers keep rendering.
   std::function<void(const Film&)> checkpoint;
   double checkpoint_seconds = 0;
-  // Asked after every finished unit; once it says true, no unit starts, the units in flight
-  // finish, and render() returns the film so far.
+  // Asked after every finished unit and between turns of every unit's stage loop, so keep it
+  // cheap (an atomic load). Once it says true, no unit starts, the units in flight are
+  // dropped at their next turn (their samples never reach the film), and render() returns the
+  // film of the units finished so far: a stop takes effect within a turn, whatever the
+  // thread count or the cost of a unit.
   std::function<bool()> stop_requested;
 };
 
@@ -101,7 +116,8 @@ struct RenderResult {
 };
 
 // Throws std::invalid_argument for an unknown integrator or invalid options, and when the render
-// would need more memory than options.memory_budget.
+// would need more memory than options.memory_budget. What a hook throws aborts the render and
+// propagates, so a caller that wants to go on catches it there.
 RenderResult render(const Scene& scene, const RenderOptions& options,
                     const RenderHooks& hooks = {});
 

@@ -13,6 +13,7 @@ double UnitProgress::elapsed_seconds() const {
 
 bool UnitProgress::unit_finished(const UnitWorkspace& ws) {
   const uint64_t rays = rays_done_ += rays_traced(ws.counters) - ws.rays_at_start;
+  nonfinite_done_ += ws.counters.nonfinite_samples - ws.nonfinite_at_start;
   const int64_t done = samples_done_ += static_cast<int64_t>(ws.unit->sample_count());
   if (hooks_.progress) {
     Progress p;
@@ -25,7 +26,14 @@ bool UnitProgress::unit_finished(const UnitWorkspace& ws) {
     hooks_.progress(p);
   }
   if (hooks_.checkpoint && hooks_.checkpoint_seconds > 0) checkpoint_if_due();
-  return !(hooks_.stop_requested && hooks_.stop_requested());
+  return !stop_requested();
+}
+
+bool UnitProgress::stop_requested() {
+  if (stopping_.load(std::memory_order_relaxed)) return true;
+  if (!hooks_.stop_requested || !hooks_.stop_requested()) return false;
+  stopping_.store(true, std::memory_order_relaxed);
+  return true;
 }
 
 void UnitProgress::checkpoint_if_due() {
@@ -36,6 +44,7 @@ void UnitProgress::checkpoint_if_due() {
   last_checkpoint_seconds_ = now;
   FilmMetadata meta = meta_;
   meta.render_seconds = now;
+  meta.nonfinite_samples = nonfinite_done_.load();
   hooks_.checkpoint(film_.resolve(meta));
 }
 

@@ -23,6 +23,9 @@ class UnitProgress {
   // `ws` has just finished its current unit and the film holds it. Returns false once the
   // caller asked to stop. Thread-safe.
   bool unit_finished(const UnitWorkspace& ws);
+  // Whether the caller asked to stop (RenderHooks::stop_requested); once it did, stays true
+  // without asking again. Thread-safe.
+  bool stop_requested();
 
  private:
   double elapsed_seconds() const;
@@ -35,6 +38,8 @@ class UnitProgress {
   const FilmMetadata meta_;
   std::atomic<int64_t> samples_done_{0};
   std::atomic<uint64_t> rays_done_{0};
+  std::atomic<uint64_t> nonfinite_done_{0};  // stamped on checkpoints
+  std::atomic<bool> stopping_{false};
   std::mutex checkpoint_mutex_;  // held while a checkpoint is taken; others skip, never wait
   double last_checkpoint_seconds_ = 0;
 };

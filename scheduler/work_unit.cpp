@@ -120,6 +120,7 @@ void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws) {
   ws.next_sample = 0;
   ws.active = 0;
   ws.rays_at_start = rays_traced(ws.counters);
+  ws.nonfinite_at_start = ws.counters.nonfinite_samples;
   ws.free_slots.resize(ws.slots);
   // Slots are handed out from the back, so start with slot 0 there.
   for (size_t i = 0; i < ws.slots; ++i) ws.free_slots[i] = static_cast<uint32_t>(ws.slots - 1 - i);
@@ -166,11 +167,14 @@ void run_stage(const KernelContext& ctx, Stage stage, UnitWorkspace& ws) {
   }
 }
 
-void run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace& ws, Rgb* out) {
+bool run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace& ws, Rgb* out,
+                   const std::function<bool()>& give_up) {
   start_work_unit(unit, out, ws);
   while (!work_unit_finished(ws)) {
+    if (give_up()) return false;
     for (const Stage stage : kStageLoop) run_stage(ctx, stage, ws);
   }
+  return true;
 }
 
 uint64_t rays_traced(const KernelCounters& counters) {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "kernels/kernel_context.h"
@@ -54,6 +55,7 @@ struct UnitWorkspace {
   size_t next_sample = 0;  // samples of the unit started so far
   size_t active = 0;       // slots holding a path
   uint64_t rays_at_start = 0;
+  uint64_t nonfinite_at_start = 0;
 
   KernelCounters counters;
   std::array<double, kStageCount> stage_seconds{};
@@ -72,8 +74,10 @@ void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws);
 bool work_unit_finished(const UnitWorkspace& ws);
 // Runs one stage of the current unit's loop; a stage whose input queue is empty is skipped.
 void run_stage(const KernelContext& ctx, Stage stage, UnitWorkspace& ws);
-// Runs a unit to completion, turn after turn.
-void run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace& ws, Rgb* out);
+// Runs a unit turn after turn until it is complete (returns true) or `give_up`, asked before
+// every turn, says true (returns false; the unit's samples so far are not usable).
+bool run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace& ws, Rgb* out,
+                   const std::function<bool()>& give_up);
 
 uint64_t rays_traced(const KernelCounters& counters);
 

@@ -1,20 +1,19 @@
 // The snee binary as a user meets it: help, usage errors, scene errors and a tiny render whose
 // outputs are read back.
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <chrono>
 #include <csignal>
-#include <thread>
-
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <memory>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "apps/output_files.h"
 #include "scene/film.h"
 #include "tests/support/command_line.h"
 
@@ -37,6 +36,9 @@ void write_file(const fs::path& path, const std::string& text) {
 }
 
 class CliTest : public ::testing::Test {
+ public:
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
@@ -56,13 +58,19 @@ class CliTest : public ::testing::Test {
     result.output = read_file(log);
     return result;
   }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-
   fs::path dir_;
 };
 
 bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
+}
+
+// No partial (temporary) file in `dir`: every name there is a final one.
+bool only_final_files(const fs::path& dir) {
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    if (contains(entry.path().filename().string(), ".partial")) return false;
+  }
+  return true;
 }
 
 TEST_F(CliTest, RenderHelpListsEveryOption) {
@@ -184,50 +192,201 @@ TEST_F(CliTest, CheckpointedRenderEndsWithTheCompleteImageAndNoPartialFiles) {
   const Film film = read_exr(path("out/c.exr"));
   EXPECT_EQ(film.meta.spp, 64);
   EXPECT_EQ(film.meta.min_spp, 64);
-  for (const auto& entry : fs::directory_iterator(path("out"))) {
-    EXPECT_EQ(entry.path().string().find(".partial"), std::string::npos) << entry.path();
-  }
+  EXPECT_TRUE(only_final_files(path("out")));
 }
 
-// Ctrl-C in the middle of a long render: the units in flight finish, the image so far is
-// written, and the exit status is the shell's 128 + SIGINT.
+// Ctrl-C in the middle of a long render: the units in flight are dropped, the image so far
+// is written, and the exit status is the shell's 128 + SIGINT.
 TEST_F(CliTest, InterruptWritesTheImageSoFar) {
   const std::string exr = path("long.exr");
-  const std::string log = path("long.txt");
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    dup2(fd, 1);
-    dup2(fd, 2);
-    execl(SNEE_BINARY, SNEE_BINARY, "render", "builtin:default", "--resolution", "64x48", "--spp",
-          "1000000", "--checkpoint", "0.2", "-o", exr.c_str(), "--quiet", nullptr);
-    _exit(127);
-  }
+  const test::BackgroundCommand run(
+      {SNEE_BINARY, "render", "builtin:default", "--resolution", "64x48", "--spp", "1000000",
+       "--checkpoint", "0.2", "-o", exr, "--quiet"},
+      path("long.txt"));
   // The first checkpoint shows the render (and so the signal handler) has started.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!fs::exists(exr) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_TRUE(fs::exists(exr)) << read_file(log);
-  ASSERT_EQ(kill(pid, SIGINT), 0);
-  int status = 0;
-  pid_t done = 0;
-  while ((done = waitpid(pid, &status, WNOHANG)) == 0 &&
-         std::chrono::steady_clock::now() < deadline + std::chrono::seconds(30))
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  if (done == 0) {
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
-    FAIL() << "snee did not stop after SIGINT: " << read_file(log);
-  }
-  ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status) << ": "
-                                 << read_file(log);
-  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT) << read_file(log);
-  EXPECT_TRUE(contains(read_file(log), "interrupted default after")) << read_file(log);
+  ASSERT_TRUE(test::wait_for([&] { return fs::exists(exr); })) << run.output();
+  const int code = run.signal_and_wait(SIGINT);
+  ASSERT_EQ(code, 128 + SIGINT) << run.output();
+  EXPECT_TRUE(contains(run.output(), "interrupted default after")) << run.output();
   const Film film = read_exr(exr);
   EXPECT_EQ(film.meta.spp, 1000000);
   EXPECT_LT(film.meta.min_spp, 1000000);
   EXPECT_GT(film.meta.render_seconds, 0.0);
+}
+
+// As many threads as the cap allows, many per core: SIGTERM still ends the render with the
+// image written, because a stop drops the units in flight instead of waiting for all of them.
+TEST_F(CliTest, ThreadsAboveTheLimitAreCappedAndSigtermIsHonoured) {
+  const std::string exr = path("many.exr");
+  const test::BackgroundCommand run(
+      {SNEE_BINARY, "render", "builtin:default", "--resolution", "64x48", "--spp", "1000000",
+       "--threads", "100000", "--checkpoint", "0.2", "-o", exr, "--quiet"},
+      path("many.txt"));
+  ASSERT_TRUE(test::wait_for([&] { return fs::exists(exr); })) << run.output();
+  ASSERT_EQ(run.signal_and_wait(SIGTERM), 128 + SIGTERM) << run.output();
+  EXPECT_TRUE(contains(run.output(), "warning: --threads 100000 is more than the limit of"))
+      << run.output();
+  const Film film = read_exr(exr);
+  EXPECT_LT(film.meta.min_spp, film.meta.spp);
+  EXPECT_TRUE(fs::is_regular_file(path("many.png")));
+}
+
+TEST_F(CliTest, NonFiniteNumbersAreRejected) {
+  for (const char* option : {"render --snee-distance-mix", "render --snee-joint-mix",
+                             "render --checkpoint", "compare --time"}) {
+    for (const char* value : {"nan", "inf", "-inf"}) {
+      const std::string args = std::string(option) + " " + value + " --resolution 4x4";
+      const Outcome run = snee(args);
+      EXPECT_NE(run.exit_code, 0) << args << "\n" << run.output;
+      EXPECT_TRUE(contains(run.output, "expected a finite number")) << args << "\n" << run.output;
+      EXPECT_FALSE(fs::exists(path("out"))) << args << ": rendered anyway";
+    }
+  }
+}
+
+// The command line accepts exactly what render() does (scheduler/render.h).
+TEST_F(CliTest, QueueCapacityLimitsAreRendersLimits) {
+  for (const char* capacity : {"15", "65537", "100000000"}) {
+    const Outcome run = snee(std::string("render --queue-capacity ") + capacity);
+    EXPECT_NE(run.exit_code, 0) << capacity << "\n" << run.output;
+    EXPECT_TRUE(contains(run.output, "expected an integer from 16 to 65536")) << run.output;
+  }
+  for (const char* capacity : {"16", "65536"}) {
+    const Outcome run = snee(std::string("render builtin:furnace-sphere --resolution 8x8 --spp 1 "
+                                         "--quiet --queue-capacity ") +
+                             capacity);
+    EXPECT_EQ(run.exit_code, 0) << capacity << "\n" << run.output;
+  }
+}
+
+// A long checkpointed render whose output directory, once the first checkpoint is there, is
+// replaced by a regular file, so the next checkpoint fails (and reports it).
+std::unique_ptr<test::BackgroundCommand> render_into_a_vanished_directory(const CliTest& t) {
+  const std::string exr = t.path("out/c.exr");
+  auto run = std::make_unique<test::BackgroundCommand>(
+      std::vector<std::string>{SNEE_BINARY, "render", "builtin:default", "--resolution", "32x24",
+                               "--spp", "1000000", "--checkpoint", "0.05", "-o", exr, "--quiet"},
+      t.path("c.txt"));
+  EXPECT_TRUE(test::wait_for([&] { return fs::exists(exr); })) << run->output();
+  fs::remove_all(t.path("out"));
+  write_file(t.path("out"), "in the way");
+  EXPECT_TRUE(test::wait_for([&] { return contains(run->output(), "checkpoint not written"); }))
+      << run->output();
+  return run;
+}
+
+// The failed checkpoint is reported and the render goes on; the next checkpoint, once the
+// way is clear, is written.
+TEST_F(CliTest, AFailedCheckpointIsReportedAndRetried) {
+  const auto run = render_into_a_vanished_directory(*this);
+  fs::remove(path("out"));
+  ASSERT_TRUE(test::wait_for([&] { return fs::exists(path("out/c.exr")); })) << run->output();
+  ASSERT_EQ(run->signal_and_wait(SIGTERM), 128 + SIGTERM) << run->output();
+  EXPECT_LT(read_exr(path("out/c.exr")).meta.min_spp, 1000000);
+  EXPECT_TRUE(only_final_files(path("out"))) << "a partial file was left behind";
+}
+
+// When the final write fails too, the render's failure is the exit code.
+TEST_F(CliTest, AFailedFinalWriteExitsWithOne) {
+  const auto run = render_into_a_vanished_directory(*this);
+  EXPECT_EQ(run->signal_and_wait(SIGTERM), 1) << run->output();
+  EXPECT_TRUE(contains(run->output(), "error: cannot write")) << run->output();
+}
+
+// Every destination is checked before any sampling: the spp here would take hours, so a
+// check after the render would never be reached within the test's timeout.
+TEST_F(CliTest, BadDestinationsFailBeforeRendering) {
+  fs::create_directories(path("dir.exr"));
+  fs::create_directories(path("pngdir.png"));
+  write_file(path("file"), "a regular file");
+  const std::string long_name(252, 'n');
+  const struct {
+    std::string options, reason;
+  } cases[] = {
+      {"-o '" + path(long_name + ".exr") + "'", "the name is 256 bytes long"},
+      {"-o '" + path("dir.exr") + "'", "a directory of that name is in the way"},
+      {"-o '" + path("pngdir.exr") + "'", "a directory of that name is in the way"},
+      {"-o '" + path("file/a.exr") + "'", "cannot create directory"},
+      {"-o '" + path("ok.exr") + "' --stats '" + path("file/sub/s.json") + "'",
+       "cannot create directory"},
+  };
+  for (const auto& c : cases) {
+    const Outcome run =
+        snee("render builtin:default --resolution 64x48 --spp 100000000 --quiet " + c.options);
+    EXPECT_EQ(run.exit_code, 1) << c.options << "\n" << run.output;
+    EXPECT_TRUE(contains(run.output, "error: cannot write")) << run.output;
+    EXPECT_TRUE(contains(run.output, c.reason)) << c.options << "\n" << run.output;
+  }
+}
+
+TEST(OutputFiles, TooLittleFreeSpaceIsAnErrorBeforeRendering) {
+  const fs::path file = fs::temp_directory_path() / "snee_space_check.exr";
+  try {
+    check_destination(file, std::numeric_limits<uintmax_t>::max());
+    FAIL() << "no file system has that much free";
+  } catch (const std::runtime_error& e) {
+    EXPECT_TRUE(contains(e.what(), "bytes free")) << e.what();
+  }
+  EXPECT_NO_THROW(check_destination(file, 1));
+  EXPECT_FALSE(fs::exists(partial_path(file)));
+}
+
+// A write that fails half-way leaves the old file as it was and no partial file.
+TEST(OutputFiles, AFailedWriteLeavesNoPartialFile) {
+  const fs::path dir = fs::temp_directory_path() / "snee_failed_write";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path file = dir / "a.exr";
+  write_file(file, "old");
+  EXPECT_THROW(replace_file(file,
+                            [](const std::string& partial) {
+                              write_file(partial, "half");
+                              throw std::runtime_error("disk full");
+                            }),
+               std::runtime_error);
+  EXPECT_EQ(read_file(file), "old");
+  EXPECT_TRUE(only_final_files(dir));
+  fs::remove_all(dir);
+}
+
+// The partial sibling of a name of NAME_MAX bytes still fits: the render's EXR and PNG are
+// written under names of 255 bytes.
+TEST_F(CliTest, OutputNamesOfNameMaxBytesWork) {
+  const std::string stem(251, 's');
+  const Outcome run = snee(
+      "render builtin:furnace-sphere --resolution 8x8 --spp 1 --quiet "
+      "--checkpoint 0.000001 -o '" +
+      path(stem + ".exr") + "'");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(read_exr(path(stem + ".exr")).width, 8);
+  EXPECT_TRUE(fs::is_regular_file(path(stem + ".png")));
+  EXPECT_LE(partial_path(path(stem + ".exr")).filename().string().size(), 255u);
+  EXPECT_TRUE(only_final_files(dir_));
+}
+
+// A radiance near the top of float's range is valid, yet its paths overflow to infinity:
+// the count of such samples reaches the statistics, stderr and the EXR.
+TEST_F(CliTest, NonFiniteSamplesAreReported) {
+  write_file(path("bright.json"), R"({
+    "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40, "resolution": [16, 16]},
+    "lights": [{"type": "constant", "radiance": 3e38}],
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+                "material": {"type": "diffuse", "albedo": 0.5}}]})");
+  const Outcome run = snee("render bright.json --spp 4 --quiet -o b.exr --stats b.json");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto stats = nlohmann::json::parse(read_file(path("b.json")));
+  const uint64_t nonfinite = stats["nonfinite_samples"].get<uint64_t>();
+  EXPECT_GT(nonfinite, 0u);
+  EXPECT_TRUE(contains(run.output, "warning: " + std::to_string(nonfinite) + " of 1024 samples"))
+      << run.output;
+  EXPECT_EQ(read_exr(path("b.exr")).meta.nonfinite_samples, nonfinite);
+
+  const Outcome clean = snee(
+      "render builtin:furnace-sphere --resolution 8x8 --spp 1 --quiet "
+      "-o f.exr --stats f.json");
+  ASSERT_EQ(clean.exit_code, 0) << clean.output;
+  EXPECT_FALSE(contains(clean.output, "not finite")) << clean.output;
+  EXPECT_EQ(nlohmann::json::parse(read_file(path("f.json")))["nonfinite_samples"], 0);
 }
 
 TEST_F(CliTest, DefaultOutputIsNamedAfterTheScene) {

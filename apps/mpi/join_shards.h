@@ -11,7 +11,10 @@ namespace snee {
 
 // Collective over `comm`: every rank calls it after rendering its shard. On rank 0 `result`
 // becomes the whole render's (film, paths and rays summed, the slowest rank's times, CPU time
-// summed); returns whether this rank is rank 0.
-bool join_shards(RenderResult& result, MPI_Comm comm);
+// summed); on every rank `exit_status` becomes the largest of the ranks' (a signal's 128 + its
+// number wins over 1, so a render stopped by SIGTERM anywhere exits 143 everywhere). A rank
+// that waits longer than `timeout_seconds` for the others ends them all (mpi_wait.h). Returns
+// whether this rank is rank 0.
+bool join_shards(RenderResult& result, int& exit_status, double timeout_seconds, MPI_Comm comm);
 
 }  // namespace snee

@@ -5,16 +5,31 @@
 // image is bitwise the one `snee render` makes.
 #include <mpi.h>
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "apps/error_exit.h"
 #include "apps/mpi/join_shards.h"
+#include "apps/mpi/mpi_wait.h"
+#include "apps/mpi/stop_together.h"
+#include "apps/option_checks.h"
 #include "apps/render_command.h"
 
+namespace {
+
+// Without --join-timeout, a rank waits for the others as long again as its own render took
+// (shards are interleaved tiles, so their costs are close) plus this margin.
+constexpr double kJoinMarginSeconds = 60;
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  // Render threads ask StopTogether whether to stop, one at a time.
+  int provided = MPI_THREAD_SINGLE;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
@@ -26,6 +41,13 @@ int main(int argc, char** argv) {
     return "error: " + std::string(e.what()) + "\nrun 'snee-mpi render --help'\n";
   });
   const snee::RenderCommand render(app);
+  double join_timeout = 0;
+  app.get_subcommand("render")
+      ->add_option("--join-timeout", join_timeout,
+                   "Seconds a process that has finished its shard waits for the others before "
+                   "ending them all with an error (0: as long as its own render took + 60 s)")
+      ->check(snee::finite_at_least(0))
+      ->capture_default_str();
   int code = 0;
   try {
     app.parse(argc, argv);
@@ -38,8 +60,26 @@ int main(int argc, char** argv) {
   snee::RenderDistribution distribution;
   distribution.shard = rank;
   distribution.shard_count = ranks;
-  distribution.join = [](snee::RenderResult& r) { return snee::join_shards(r, MPI_COMM_WORLD); };
+  // Without thread support the processes still join, they just do not stop together.
+  std::optional<snee::StopTogether> stop_together;
+  if (provided >= MPI_THREAD_SERIALIZED) {
+    stop_together.emplace(MPI_COMM_WORLD);
+    distribution.stop_together = [&](int status) { return (*stop_together)(status); };
+  }
+  distribution.join = [&](snee::RenderResult& r, int& status) {
+    const double timeout = join_timeout > 0 ? join_timeout : r.stats.seconds + kJoinMarginSeconds;
+    return snee::join_shards(r, status, timeout, MPI_COMM_WORLD);
+  };
   code = snee::run_reporting_errors([&] { return render.run(distribution); });
+  stop_together.reset();
+  // MPI_Finalize waits for every process, so one stopped after the join would hold the
+  // others there for ever: they meet once more, with a deadline, first.
+  if (code == 0 || code >= 128) {
+    std::vector<MPI_Request> finished(1);
+    MPI_Ibarrier(MPI_COMM_WORLD, finished.data());
+    snee::wait_or_abort(finished, join_timeout > 0 ? join_timeout : kJoinMarginSeconds, "finish",
+                        MPI_COMM_WORLD);
+  }
   // A rank that failed before the join would leave the others waiting in it for ever.
   if (code != 0 && code < 128) MPI_Abort(MPI_COMM_WORLD, code);
   MPI_Finalize();

@@ -1,0 +1,40 @@
+// Writing the files of a render so that no fault loses them silently: every destination is
+// checked before rendering starts, each file is written beside its final name under a short
+// hidden temporary name and renamed over it, and the temporary file is removed on any failure
+// (and by a second Ctrl-C, interrupt_request.h).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+
+#include "scene/film.h"
+
+namespace snee {
+
+// Where `file` is written before it is renamed over `file`: a hidden name in the same
+// directory, with this process's id and the same extension (the image writers choose the
+// format by it), never longer than NAME_MAX whatever the length of `file`'s name.
+std::filesystem::path partial_path(const std::filesystem::path& file);
+
+// Writes `file` as a whole: `write` writes the partial_path, which is then renamed over
+// `file`; creates the directory if it is missing (it may have been removed since the last
+// write). Throws std::runtime_error naming the file, leaving no partial file behind.
+void replace_file(const std::filesystem::path& file,
+                  const std::function<void(const std::string&)>& write);
+
+// The EXR, then its PNG preview, each with replace_file.
+void write_images(const Film& film, const std::filesystem::path& exr,
+                  const std::filesystem::path& png);
+
+// Upper bounds of the files write_images makes for a width x height film (before compression).
+uintmax_t exr_bytes_bound(int width, int height);
+uintmax_t png_bytes_bound(int width, int height);
+
+// Makes sure `file` can be written later: creates its directory, checks that its name fits
+// the file system and that no directory is in the way, creates and removes its partial file,
+// and checks that the file system has `bytes` free. Throws std::runtime_error naming the file
+// and the reason.
+void check_destination(const std::filesystem::path& file, uintmax_t bytes);
+
+}  // namespace snee
