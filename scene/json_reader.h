@@ -89,4 +89,14 @@ class JsonObject {
 // "a.b", "a[2]" or just "b" at the top level.
 std::string json_child_path(const std::string& parent, std::string_view key);
 
+// The deepest nesting of arrays and objects a document may have. Scenes need about six levels;
+// the bound keeps every walk of a document that recurses (copying, dumping, comparing) far from
+// the end of the stack, whatever the file holds.
+inline constexpr int kMaxJsonDepth = 100;
+
+// Parses JSON text (comments allowed). Every problem, including nesting deeper than
+// kMaxJsonDepth and numbers beyond double range, is a SceneError
+// "<origin>:<line>:<column>: <what is wrong and what was expected>".
+nlohmann::json parse_json_document(std::string_view text, const std::string& origin);
+
 }  // namespace snee

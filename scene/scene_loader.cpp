@@ -520,18 +520,8 @@ LoadedScene load_scene_file(const std::string& path) {
   if (!file) throw SceneError(path + ": cannot open the scene file");
   std::ostringstream text;
   text << file.rdbuf();
-  json doc;
-  try {
-    doc = json::parse(text.str(), nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column
-    // C: ..."; the bracketed id means nothing to a user.
-    std::string message = e.what();
-    const size_t id_end = message.find("] ");
-    if (id_end != std::string::npos) message = message.substr(id_end + 2);
-    throw SceneError(path + ": malformed JSON: " + message);
-  }
-  return load_scene_json(doc, path, fs::path(path).parent_path().string());
+  return load_scene_json(parse_json_document(text.str(), path), path,
+                         fs::path(path).parent_path().string());
 }
 
 LoadedScene load_scene(const std::string& spec) {

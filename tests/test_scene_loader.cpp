@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -71,6 +72,16 @@ class SceneLoaderTest : public ::testing::Test {
       EXPECT_NE(message.find(path + ":"), std::string::npos) << "path " << path << ": " << message;
       EXPECT_NE(message.find(expectation), std::string::npos)
           << "expectation '" << expectation << "': " << message;
+    }
+  }
+
+  // Loads `text` expecting a SceneError whose message contains `expected`.
+  void expect_text_error(const std::string& text, const std::string& expected) {
+    try {
+      load_text(text);
+      ADD_FAILURE() << "no SceneError; expected " << expected;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
   }
 
@@ -391,10 +402,65 @@ TEST_F(SceneLoaderTest, MissingAndMalformedFiles) {
     ADD_FAILURE();
   } catch (const SceneError& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find(scene_path()), std::string::npos) << message;
-    EXPECT_NE(message.find("malformed JSON"), std::string::npos) << message;
-    EXPECT_NE(message.find("line 3, column 15"), std::string::npos) << message;
+    EXPECT_NE(message.find(scene_path() + ":3:15: malformed JSON: "), std::string::npos) << message;
+    EXPECT_NE(message.find("expected string literal"), std::string::npos) << message;
+    EXPECT_EQ(message.find("json.exception"), std::string::npos) << message;
   }
+}
+
+// Nesting this deep used to overflow the stack while the error message quoted the value.
+TEST_F(SceneLoaderTest, DeepNestingIsRefusedWhileParsing) {
+  for (const size_t depth : {size_t{100'000}, size_t{1'000'000}}) {
+    SCOPED_TRACE(depth);
+    expect_text_error("{\n  \"name\": " + std::string(depth, '[') + std::string(depth, ']') + "}",
+                      // The object is level 1, so the 100th bracket (column 11 + 99) is too deep.
+                      scene_path() + ":2:110: arrays and objects nested deeper than 100 levels");
+    expect_text_error(std::string(depth, '[') + "{\"a\": 1}" + std::string(depth, ']'),
+                      scene_path() + ":1:101: arrays and objects nested deeper than 100 levels");
+  }
+  // Up to the bound the document parses, and the loader's message names the path.
+  expect_text_error("{\"camera\": " + std::string(99, '[') + std::string(99, ']') + "}",
+                    scene_path() + ": camera: expected an object, got [[[[");
+}
+
+// A value nested deeper than any parsed document may be (a caller building one in memory) is
+// quoted in messages without walking all of it.
+TEST_F(SceneLoaderTest, DeeplyNestedValueIsQuotedShortly) {
+  json deep = json::array();
+  for (int i = 0; i < 1'000'000; ++i) {
+    json outer = json::array();
+    outer.push_back(std::move(deep));
+    deep = std::move(outer);
+  }
+  json doc = full_scene();
+  doc["name"] = std::move(deep);
+  try {
+    load_scene_json(doc, "memory", dir_.string());
+    ADD_FAILURE() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "memory: name: expected a non-empty string, got " + std::string(37, '[') + "...");
+  }
+}
+
+TEST_F(SceneLoaderTest, NumberBeyondDoubleRangeNamesLineAndColumn) {
+  std::string text = full_scene().dump(2);
+  const std::string fov = "\"fov\": 35";
+  ASSERT_NE(text.find(fov), std::string::npos);
+  text.replace(text.find(fov), fov.size(), "\"fov\": 1e400");
+  const size_t at = text.find("1e400");
+  const size_t line = 1 + std::count(text.begin(), text.begin() + at, '\n');
+  const size_t column = at - text.rfind('\n', at) + 4;  // 1-based, at the last digit
+  expect_text_error(text,
+                    scene_path() + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                        ": the number 1e400 is beyond double range; expected a finite number");
+}
+
+// nlohmann's parser keeps the last of two equal keys; a scene refuses them, as it refuses
+// unknown keys, so that no written value is silently dropped.
+TEST_F(SceneLoaderTest, DuplicateKeyIsAnError) {
+  expect_text_error("{\n  \"name\": \"a\",\n  \"name\": \"b\"}",
+                    scene_path() + ":3:8: the key \"name\" appears twice in one object");
 }
 
 const json kRemove = "<remove the key>";
