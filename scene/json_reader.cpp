@@ -246,7 +246,12 @@ double JsonValue::number(const NumberRange& range) const {
 float JsonValue::real(const NumberRange& range) const {
   const double x = number(range);
   const float f = static_cast<float>(x);
-  if (!std::isfinite(f)) expected("a number within single-precision range");
+  if (!std::isfinite(f)) expected("a number within single-precision range (below 3.4e38)");
+  // A value inside the interval in double may round onto an open end (g = 0.99999999 becomes 1)
+  // or, near 0, to 0.
+  if (!range.contains(f)) {
+    expected(range.describe() + " in single precision, where it is " + format_number(f));
+  }
   return f;
 }
 
@@ -291,10 +296,14 @@ Vec3 JsonValue::vec3() const {
   return {items[0].real(), items[1].real(), items[2].real()};
 }
 
-Vec3 JsonValue::direction() const {
+Direction JsonValue::direction() const {
   const Vec3 v = vec3();
-  if (!(length(v) > 0)) expected("a non-zero direction");
-  return v;
+  // Scaled to a largest component of magnitude 1 before normalizing: the squared length of
+  // [3e38, 3e38, 3e38] overflows and that of [1e-30, 0, 0] underflows, and either would
+  // normalize to no direction. Scaled, the squared length lies in [1, 3].
+  const float largest = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (!(largest > 0)) expected("a non-zero direction");
+  return {v, normalize(v / largest)};
 }
 
 Rgb JsonValue::rgb(const NumberRange& range) const {
