@@ -19,6 +19,10 @@ namespace snee {
 // Embree accepts (|x| < 1.8e18; beyond it Embree aborts on an invalid ray).
 inline constexpr float kMaxCoordinate = 1e12f;
 
+// Longest image edge in pixels, for a scene's camera resolution and the command line's
+// --resolution alike: a width * height pixel index (at most 2^30) fits an int.
+inline constexpr int kMaxImageEdge = 1 << 15;
+
 struct Camera {
   Vec3 position{0, 0, 5};
   Vec3 look_at{0, 0, 0};

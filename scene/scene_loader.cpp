@@ -268,8 +268,8 @@ class SceneReader {
     }
     if (auto resolution = obj.optional("resolution")) {
       const std::vector<JsonValue> wh = resolution->array(2);
-      camera.width = static_cast<int>(wh[0].integer(1, 1 << 16));
-      camera.height = static_cast<int>(wh[1].integer(1, 1 << 16));
+      camera.width = static_cast<int>(wh[0].integer(1, kMaxImageEdge));
+      camera.height = static_cast<int>(wh[1].integer(1, kMaxImageEdge));
     }
     canonical_["camera"] = {{"type", "pinhole"},
                             {"position", to_json(camera.position)},

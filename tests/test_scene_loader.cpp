@@ -510,7 +510,7 @@ TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
       {"fov too large", "/camera/fov", 180, "camera.fov", "expected a number in (0, 180)"},
       {"fov zero", "/camera/fov", 0, "camera.fov", "expected a number in (0, 180)"},
       {"zero width", "/camera/resolution/0", 0, "camera.resolution[0]",
-       "expected an integer in [1, 65536], got 0"},
+       "expected an integer in [1, 32768], got 0"},
       {"fractional height", "/camera/resolution/1", 2.5, "camera.resolution[1]",
        "expected an integer"},
       {"resolution shape",
