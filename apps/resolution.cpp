@@ -2,15 +2,14 @@
 
 #include <charconv>
 
+#include "scene/scene.h"
+
 namespace snee {
 namespace {
 
-// Larger images would overflow the int pixel indices used by Film.
-constexpr int kMaxEdge = 1 << 15;
-
 bool parse_edge(const char* begin, const char* end, int& value) {
   const auto [ptr, ec] = std::from_chars(begin, end, value);
-  return ec == std::errc() && ptr == end && value > 0 && value <= kMaxEdge;
+  return ec == std::errc() && ptr == end && value > 0 && value <= kMaxImageEdge;
 }
 
 }  // namespace
@@ -29,7 +28,8 @@ CLI::Validator resolution_validator() {
   return CLI::Validator(
       [](const std::string& text) {
         return parse_resolution(text) ? std::string()
-                                      : "expected WxH with positive sizes, got '" + text + "'";
+                                      : "expected WxH with sizes in [1, " +
+                                            std::to_string(kMaxImageEdge) + "], got '" + text + "'";
       },
       "WxH");
 }

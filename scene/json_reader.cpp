@@ -1,11 +1,15 @@
 #include "scene/json_reader.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <sstream>
 
 namespace snee {
 
 namespace {
+
+using nlohmann::json;
 
 std::string format_number(double x) {
   std::ostringstream s;
@@ -22,12 +26,177 @@ std::string join(std::initializer_list<std::string_view> words) {
   return out;
 }
 
+constexpr size_t kPreviewLength = 40;
+
+// Appends `value` as compact JSON until `out` holds more than `limit` characters. Not dump(),
+// which recurses through the whole value: a deeply nested one would overflow the stack. Every
+// level writes a bracket before it descends, so the recursion stops within `limit` levels.
+void append_preview(const json& value, std::string& out, size_t limit) {
+  if (!value.is_structured()) {
+    out += value.dump();
+    return;
+  }
+  out += value.is_array() ? '[' : '{';
+  for (auto it = value.begin(); it != value.end(); ++it) {
+    if (out.size() > limit) return;
+    if (it != value.begin()) out += ',';
+    if (value.is_object()) out += json(it.key()).dump() + ':';
+    append_preview(*it, out, limit);
+  }
+  out += value.is_array() ? ']' : '}';
+}
+
 // Short rendering of the offending value for messages.
-std::string preview(const nlohmann::json& value) {
-  std::string text = value.dump();
-  if (text.size() > 40) text = text.substr(0, 37) + "...";
+std::string preview(const json& value) {
+  std::string text;
+  append_preview(value, text, kPreviewLength);
+  if (text.size() > kPreviewLength) text = text.substr(0, kPreviewLength - 3) + "...";
   return text;
 }
+
+// Gives nlohmann's lexer the text one character at a time and records how far it has read, so
+// that an error found while building the document (which the SAX interface does not locate)
+// can still name a line and column.
+class TrackingIterator {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  TrackingIterator(const char* at, const char** read_end) : at_(at), read_end_(read_end) {}
+  reference operator*() const {
+    *read_end_ = at_ + 1;
+    return *at_;
+  }
+  TrackingIterator& operator++() {
+    ++at_;
+    return *this;
+  }
+  TrackingIterator operator++(int) {
+    const TrackingIterator before = *this;
+    ++at_;
+    return before;
+  }
+  bool operator==(const TrackingIterator& other) const { return at_ == other.at_; }
+
+ private:
+  const char* at_;
+  const char** read_end_;
+};
+
+// Builds the document from nlohmann's SAX events, refusing nesting deeper than kMaxJsonDepth and
+// keys given twice in one object (which nlohmann's own parser silently resolves to the last).
+class DocumentBuilder final : public nlohmann::json_sax<json> {
+ public:
+  DocumentBuilder(std::string_view text, std::string origin)
+      : text_(text), origin_(std::move(origin)), read_end_(text.data()) {}
+
+  json parse() {
+    const TrackingIterator begin(text_.data(), &read_end_);
+    const TrackingIterator end(text_.data() + text_.size(), &read_end_);
+    if (!json::sax_parse(begin, end, this, json::input_format_t::json, /*strict=*/true,
+                         /*ignore_comments=*/true)) {
+      throw SceneError(error_);
+    }
+    return std::move(document_);
+  }
+
+  bool null() override { return add(nullptr); }
+  bool boolean(bool value) override { return add(value); }
+  bool number_integer(number_integer_t value) override { return add(value); }
+  bool number_unsigned(number_unsigned_t value) override { return add(value); }
+  bool number_float(number_float_t value, const string_t&) override { return add(value); }
+  bool string(string_t& value) override { return add(std::move(value)); }
+  bool binary(binary_t& value) override { return add(json::binary(std::move(value))); }
+  bool start_object(std::size_t) override { return open(json::object()); }
+  bool end_object() override { return close(); }
+  bool start_array(std::size_t) override { return open(json::array()); }
+  bool end_array() override { return close(); }
+
+  bool key(string_t& name) override {
+    if (open_.back()->contains(name)) {
+      return fail_here("the key " + json(name).dump() +
+                       " appears twice in one object; expected each key at most once");
+    }
+    key_ = std::move(name);
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string& last_token,
+                   const nlohmann::detail::exception& e) override {
+    // 406 is nlohmann's "number overflow": a literal such as 1e400 that no double holds.
+    if (e.id == 406) {
+      return fail_at(position, "the number " + last_token +
+                                   " is beyond double range; expected a finite number");
+    }
+    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column
+    // C: ..."; the bracketed id means nothing to a user and the place is given in front.
+    std::string message = e.what();
+    const size_t id_end = message.find("] ");
+    if (id_end != std::string::npos) message.erase(0, id_end + 2);
+    if (message.starts_with("parse error")) {
+      const size_t place_end = message.find(": ");
+      if (place_end != std::string::npos) message.erase(0, place_end + 2);
+    }
+    return fail_at(position, "malformed JSON: " + message);
+  }
+
+ private:
+  // Puts `value` where the document is being built: the root, the next element of the open
+  // array, or the member of the open object under the last key.
+  json& place(json value) {
+    if (open_.empty()) return document_ = std::move(value);
+    json& parent = *open_.back();
+    if (parent.is_array()) {
+      parent.push_back(std::move(value));
+      return parent.back();
+    }
+    return parent[key_] = std::move(value);
+  }
+  bool add(json value) {
+    place(std::move(value));
+    return true;
+  }
+  // Pointers into the open containers stay valid: a container only grows while none of its
+  // children is open.
+  bool open(json container) {
+    if (open_.size() >= static_cast<size_t>(kMaxJsonDepth)) {
+      return fail_here("arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) +
+                       " levels; expected at most " + std::to_string(kMaxJsonDepth));
+    }
+    open_.push_back(&place(std::move(container)));
+    return true;
+  }
+  bool close() {
+    open_.pop_back();
+    return true;
+  }
+
+  bool fail_here(const std::string& message) {
+    return fail_at(static_cast<size_t>(read_end_ - text_.data()), message);
+  }
+  // `offset` counts the characters read, so the one at fault is the last of them; the column is
+  // 1-based, as in nlohmann's messages.
+  bool fail_at(size_t offset, const std::string& message) {
+    const std::string_view before = text_.substr(0, std::min(offset, text_.size()));
+    const size_t line = 1 + static_cast<size_t>(std::count(before.begin(), before.end(), '\n'));
+    const size_t line_start =
+        before.rfind('\n') == std::string_view::npos ? 0 : before.rfind('\n') + 1;
+    error_ = origin_ + ":" + std::to_string(line) + ":" +
+             std::to_string(before.size() - line_start) + ": " + message;
+    return false;
+  }
+
+  std::string_view text_;
+  std::string origin_;
+  const char* read_end_;
+  json document_;
+  std::vector<json*> open_;
+  string_t key_;
+  std::string error_;
+};
 
 }  // namespace
 
@@ -54,6 +223,10 @@ std::string json_child_path(const std::string& parent, std::string_view key) {
   return parent + "." + std::string(key);
 }
 
+json parse_json_document(std::string_view text, const std::string& origin) {
+  return DocumentBuilder(text, origin).parse();
+}
+
 void JsonValue::fail(const std::string& message) const {
   const std::string where = path_.empty() ? "" : path_ + ": ";
   throw SceneError(*origin_ + ": " + where + message);
@@ -73,7 +246,12 @@ double JsonValue::number(const NumberRange& range) const {
 float JsonValue::real(const NumberRange& range) const {
   const double x = number(range);
   const float f = static_cast<float>(x);
-  if (!std::isfinite(f)) expected("a number within single-precision range");
+  if (!std::isfinite(f)) expected("a number within single-precision range (below 3.4e38)");
+  // A value inside the interval in double may round onto an open end (g = 0.99999999 becomes 1)
+  // or, near 0, to 0.
+  if (!range.contains(f)) {
+    expected(range.describe() + " in single precision, where it is " + format_number(f));
+  }
   return f;
 }
 
@@ -118,10 +296,14 @@ Vec3 JsonValue::vec3() const {
   return {items[0].real(), items[1].real(), items[2].real()};
 }
 
-Vec3 JsonValue::direction() const {
+Direction JsonValue::direction() const {
   const Vec3 v = vec3();
-  if (!(length(v) > 0)) expected("a non-zero direction");
-  return v;
+  // Scaled to a largest component of magnitude 1 before normalizing: the squared length of
+  // [3e38, 3e38, 3e38] overflows and that of [1e-30, 0, 0] underflows, and either would
+  // normalize to no direction. Scaled, the squared length lies in [1, 3].
+  const float largest = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (!(largest > 0)) expected("a non-zero direction");
+  return {v, normalize(v / largest)};
 }
 
 Rgb JsonValue::rgb(const NumberRange& range) const {

@@ -37,6 +37,11 @@ inline constexpr NumberRange kUnitInterval{0.0, 1.0};
 
 class JsonObject;
 
+struct Direction {
+  Vec3 given;  // as written, for the canonical document
+  Vec3 unit;
+};
+
 class JsonValue {
  public:
   JsonValue(const nlohmann::json& value, std::string path, const std::string& origin)
@@ -52,6 +57,8 @@ class JsonValue {
   [[noreturn]] void expected(const std::string& expectation) const;
 
   double number(const NumberRange& range = kAnyNumber) const;
+  // A number that is finite and inside `range` after rounding to float, the precision the
+  // program computes in.
   float real(const NumberRange& range = kAnyNumber) const;
   int64_t integer(int64_t min, int64_t max) const;
   bool boolean() const;
@@ -59,7 +66,7 @@ class JsonValue {
   // One of `choices`; the message lists them.
   std::string choice(std::initializer_list<std::string_view> choices) const;
   Vec3 vec3() const;                                     // [x, y, z]
-  Vec3 direction() const;                                // [x, y, z], non-zero, returned normalized
+  Direction direction() const;                           // [x, y, z], non-zero
   Rgb rgb(const NumberRange& range = kAnyNumber) const;  // a number (grey) or [r, g, b]
   std::vector<JsonValue> array() const;
   std::vector<JsonValue> array(size_t size) const;  // exactly `size` elements
@@ -88,5 +95,15 @@ class JsonObject {
 
 // "a.b", "a[2]" or just "b" at the top level.
 std::string json_child_path(const std::string& parent, std::string_view key);
+
+// The deepest nesting of arrays and objects a document may have. Scenes need about six levels;
+// the bound keeps every walk of a document that recurses (copying, dumping, comparing) far from
+// the end of the stack, whatever the file holds.
+inline constexpr int kMaxJsonDepth = 100;
+
+// Parses JSON text (comments allowed). Every problem, including nesting deeper than
+// kMaxJsonDepth and numbers beyond double range, is a SceneError
+// "<origin>:<line>:<column>: <what is wrong and what was expected>".
+nlohmann::json parse_json_document(std::string_view text, const std::string& origin);
 
 }  // namespace snee

@@ -11,6 +11,18 @@
 
 namespace snee {
 
+// Largest magnitude of any world-space coordinate: the camera's position and look_at, mesh
+// vertices after their transform, sphere centre +- radius, point-light positions. Within it, a
+// difference of two points is below 2e12 per axis (3.5e12 long), so the products of three such
+// lengths that ray-triangle tests form (an edge cross product dotted with an offset) stay below
+// 4.2e37, under float's 3.4e38, and every ray origin and direction keeps far inside the range
+// Embree accepts (|x| < 1.8e18; beyond it Embree aborts on an invalid ray).
+inline constexpr float kMaxCoordinate = 1e12f;
+
+// Longest image edge in pixels, for a scene's camera resolution and the command line's
+// --resolution alike: a width * height pixel index (at most 2^30) fits an int.
+inline constexpr int kMaxImageEdge = 1 << 15;
+
 struct Camera {
   Vec3 position{0, 0, 5};
   Vec3 look_at{0, 0, 0};

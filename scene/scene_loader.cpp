@@ -1,5 +1,6 @@
 #include "scene/scene_loader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -33,8 +34,52 @@ json to_json(const Transform& t) {
   return json::array({json{{"matrix", rows}}});
 }
 
+// Relative indices of refraction beyond these are not materials; the bounds keep eta^2 and
+// 1 / eta^2 of the Fresnel and radiance-scaling terms far from float's limits.
+constexpr NumberRange kIorRange{1e-3, 1e3};
+
 float degrees_to_radians(float degrees) {
   return degrees * (kPi / 180.0f);
+}
+
+std::string describe_number(float x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+std::string describe_point(Vec3 p) {
+  return "(" + describe_number(p.x) + ", " + describe_number(p.y) + ", " + describe_number(p.z) +
+         ")";
+}
+
+std::string coordinate_bound_expectation() {
+  return "expected every world-space coordinate within +-" + describe_number(kMaxCoordinate);
+}
+
+// False for NaN too.
+bool within_coordinate_bound(Vec3 p) {
+  return std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate &&
+         std::fabs(p.z) <= kMaxCoordinate;
+}
+
+// `what` names the point in the message, e.g. "the camera position".
+void check_coordinates(Vec3 p, const JsonValue& where, const std::string& what) {
+  if (!within_coordinate_bound(p)) {
+    where.fail(what + " " + describe_point(p) + " is beyond the coordinate bound; " +
+               coordinate_bound_expectation());
+  }
+}
+
+// `mesh` is in world space; `what` names it in the message, e.g. "the quad".
+void check_mesh_coordinates(const TriangleMesh& mesh, const JsonValue& where,
+                            const std::string& what) {
+  const auto outside = std::find_if(mesh.positions.begin(), mesh.positions.end(),
+                                    [](Vec3 p) { return !within_coordinate_bound(p); });
+  if (outside == mesh.positions.end()) return;
+  check_coordinates(*outside, where,
+                    "vertex " + std::to_string(outside - mesh.positions.begin()) + " of " + what +
+                        ", after the transform at");
 }
 
 // The three columns of the linear part.
@@ -59,6 +104,16 @@ bool is_rotation(const Transform& t) {
          t.determinant() > 0 && t.m[0][3] == 0 && t.m[1][3] == 0 && t.m[2][3] == 0;
 }
 
+// An environment light's radiance is its scale times the image's pixels.
+void check_scaled_image(const EnvImage& image, Rgb scale, const JsonValue& where) {
+  Rgb brightest(0.0f);
+  for (const Rgb& pixel : image.pixels) brightest = vmax(brightest, pixel);
+  if (!is_finite(scale * brightest)) {
+    where.expected("a scale whose product with the image's brightest pixel " +
+                   describe_point(brightest) + " is finite in single precision");
+  }
+}
+
 // Transforms are lists of operations applied in order, first to last:
 //   {"translate": [x, y, z]}, {"rotate": {"axis": [x, y, z], "degrees": d}},
 //   {"scale": s or [sx, sy, sz]}, {"matrix": 3 or 4 rows of 4 numbers}.
@@ -74,7 +129,7 @@ Transform parse_transform(const JsonValue& value) {
       step = Transform::translate(t->vec3());
     } else if (auto r = op.optional("rotate")) {
       const JsonObject rotate = r->object({"axis", "degrees"});
-      const Vec3 axis = rotate.required("axis").direction();
+      const Vec3 axis = rotate.required("axis").direction().unit;
       step = Transform::rotate(axis, degrees_to_radians(rotate.required("degrees").real()));
     } else if (auto s = op.optional("scale")) {
       step = Transform::scale(s->rgb({0.0, std::numeric_limits<double>::infinity(), true}));
@@ -98,6 +153,11 @@ Transform parse_transform(const JsonValue& value) {
       }
     }
     result = step * result;
+  }
+  for (const auto& row : result.m) {
+    if (!std::all_of(std::begin(row), std::end(row), [](float x) { return std::isfinite(x); })) {
+      value.fail("the combined transform has entries beyond single-precision range");
+    }
   }
   if (!(std::fabs(result.determinant()) > 0)) value.fail("the transform is not invertible");
   return result;
@@ -171,24 +231,44 @@ class SceneReader {
     const JsonObject obj = value.object({"type", "position", "look_at", "up", "fov", "resolution"});
     if (auto type = obj.optional("type")) type->choice({"pinhole"});
     Camera& camera = out_.scene.camera;
-    camera.position = obj.required("position").vec3();
+    const JsonValue position = obj.required("position");
+    camera.position = position.vec3();
+    check_coordinates(camera.position, position, "the camera position");
     const JsonValue look_at = obj.required("look_at");
     camera.look_at = look_at.vec3();
+    check_coordinates(camera.look_at, look_at, "the look_at point");
+    // The renderer builds the camera's frame from normalize(look_at - position) in float; closer
+    // than about 1e-19 the squared distance underflows and leaves no direction.
     const Vec3 view = camera.look_at - camera.position;
-    if (!(length(view) > 0)) look_at.expected("a point different from the camera position");
+    if (!(std::fabs(length(normalize(view)) - 1) < 1e-5f)) {
+      look_at.expected(
+          "a point different from the camera position, far enough from it (about 1e-19) to give "
+          "a viewing direction in single precision");
+    }
     Vec3 up_as_given = camera.up;
     if (auto up = obj.optional("up")) {
-      up_as_given = up->direction();
-      camera.up = normalize(up_as_given);
+      const Direction up_direction = up->direction();
+      up_as_given = up_direction.given;
+      camera.up = up_direction.unit;
       if (!(length(cross(normalize(view), camera.up)) > 1e-4f)) {
         up->expected("a direction not parallel to the viewing direction");
       }
     }
-    if (auto fov = obj.optional("fov")) camera.fov_y_degrees = fov->real({0.0, 180.0, true, true});
+    if (auto fov = obj.optional("fov")) {
+      camera.fov_y_degrees = fov->real({0.0, 180.0, true, true});
+      // The image plane's half height, as the renderer computes it in float; for a subnormal
+      // fov it rounds to 0 and every pixel would see along the same ray.
+      const float tan_half = std::tan(0.5f * camera.fov_y_degrees * kPi / 180.0f);
+      if (!(tan_half > 0)) {
+        fov->expected(
+            "a number in (0, 180) whose half-angle tangent is positive in single "
+            "precision");
+      }
+    }
     if (auto resolution = obj.optional("resolution")) {
       const std::vector<JsonValue> wh = resolution->array(2);
-      camera.width = static_cast<int>(wh[0].integer(1, 1 << 16));
-      camera.height = static_cast<int>(wh[1].integer(1, 1 << 16));
+      camera.width = static_cast<int>(wh[0].integer(1, kMaxImageEdge));
+      camera.height = static_cast<int>(wh[1].integer(1, kMaxImageEdge));
     }
     canonical_["camera"] = {{"type", "pinhole"},
                             {"position", to_json(camera.position)},
@@ -249,7 +329,7 @@ class SceneReader {
       const JsonObject obj = value.object({"name", "type", "ior", "roughness"});
       material.name = unique_name(obj, top_level, material_names_, "material");
       material.kind = MaterialKind::kDielectric;
-      if (auto ior = obj.optional("ior")) material.ior = ior->real(kPositive);
+      if (auto ior = obj.optional("ior")) material.ior = ior->real(kIorRange);
       if (auto roughness = obj.optional("roughness")) {
         material.roughness = roughness->real(kUnitInterval);
       }
@@ -282,9 +362,20 @@ class SceneReader {
     if (by_coefficients) {
       medium.sigma_s = obj.required("sigma_s").rgb(kNonNegative);
       if (auto sigma_a = obj.optional("sigma_a")) medium.sigma_a = sigma_a->rgb(kNonNegative);
+      if (!is_finite(medium.sigma_t())) {
+        value.fail("sigma_s + sigma_a " + describe_point(medium.sigma_t()) +
+                   " is beyond single-precision range; expected a smaller sum");
+      }
     } else {
       const Rgb albedo = obj.required("albedo").rgb(kUnitInterval);
-      const Rgb sigma_t = Rgb(1.0f) / obj.required("mean_free_path").rgb(kPositive);
+      const JsonValue mean_free_path = obj.required("mean_free_path");
+      const Rgb sigma_t = Rgb(1.0f) / mean_free_path.rgb(kPositive);
+      // Below about 3e-39, sigma_t = 1 / mean_free_path overflows and albedo 0 times it is NaN.
+      if (!is_finite(sigma_t)) {
+        mean_free_path.expected(
+            "mean free paths whose inverse (sigma_t) is finite in single precision, i.e. at "
+            "least 3e-39");
+      }
       medium.sigma_s = albedo * sigma_t;
       medium.sigma_a = (Rgb(1.0f) - albedo) * sigma_t;
     }
@@ -355,6 +446,7 @@ class SceneReader {
       Transform placement = transform;
       if (normalize) placement = transform * normalizing_transform(shape.mesh);
       apply_transform(placement, shape.mesh);
+      check_mesh_coordinates(shape.mesh, value, shape.source);
       canonical["file"] = file.canonical;
       canonical["normalize"] = normalize;
     } else if (type == "sphere") {
@@ -368,6 +460,12 @@ class SceneReader {
       shape.kind = ShapeKind::kSphere;
       shape.center = transform.point(center);
       shape.radius = radius * transform.uniform_scale();
+      if (!within_coordinate_bound(shape.center - Vec3(shape.radius)) ||
+          !within_coordinate_bound(shape.center + Vec3(shape.radius))) {
+        value.fail("the sphere, after the transform at centre " + describe_point(shape.center) +
+                   " with radius " + describe_number(shape.radius) +
+                   ", reaches beyond the coordinate bound; " + coordinate_bound_expectation());
+      }
       shape.name = "sphere";
       canonical["center"] = to_json(center);
       canonical["radius"] = radius;
@@ -387,6 +485,7 @@ class SceneReader {
       shape.mesh.positions = {{-hw, 0, -hd}, {-hw, 0, hd}, {hw, 0, hd}, {hw, 0, -hd}};
       shape.mesh.indices = {0, 1, 2, 0, 2, 3};
       apply_transform(transform, shape.mesh);
+      check_mesh_coordinates(shape.mesh, value, "the quad");
       shape.name = "quad";
       canonical["size"] = json::array({width, depth});
     }
@@ -440,21 +539,28 @@ class SceneReader {
     if (type == "directional") {
       const JsonObject obj = value.object({"type", "direction", "irradiance"});
       light.kind = LightKind::kDirectional;
-      const Vec3 direction = obj.required("direction").direction();
-      light.direction = normalize(direction);
+      const Direction direction = obj.required("direction").direction();
+      light.direction = direction.unit;
       if (auto e = obj.optional("irradiance")) light.irradiance = e->rgb(kNonNegative);
-      canonical["direction"] = to_json(direction);
+      canonical["direction"] = to_json(direction.given);
       canonical["irradiance"] = to_json(light.irradiance);
     } else if (type == "cone") {
       const JsonObject obj = value.object({"type", "direction", "half_angle_degrees", "radiance"});
       light.kind = LightKind::kCone;
-      const Vec3 direction = obj.required("direction").direction();
-      light.direction = normalize(direction);
-      const float half_angle_degrees =
-          obj.required("half_angle_degrees").real({0.0, 180.0, true, false});
+      const Direction direction = obj.required("direction").direction();
+      light.direction = direction.unit;
+      const JsonValue half_angle_value = obj.required("half_angle_degrees");
+      const float half_angle_degrees = half_angle_value.real({0.0, 180.0, true, false});
       light.half_angle = degrees_to_radians(half_angle_degrees);
+      // The cone's solid angle is 2 pi (1 - cos(half angle)), in float: below about 0.014
+      // degrees the cosine rounds to 1 and the light could neither be hit nor sampled.
+      if (!(std::cos(light.half_angle) < 1.0f)) {
+        half_angle_value.expected(
+            "an angle in (0, 180] whose cosine is below 1 in single precision (at least about "
+            "0.014 degrees)");
+      }
       if (auto l = obj.optional("radiance")) light.radiance = l->rgb(kNonNegative);
-      canonical["direction"] = to_json(direction);
+      canonical["direction"] = to_json(direction.given);
       canonical["half_angle_degrees"] = half_angle_degrees;
       canonical["radiance"] = to_json(light.radiance);
     } else if (type == "constant") {
@@ -479,14 +585,19 @@ class SceneReader {
         out_.scene.env_images.push_back(make_soft_sky(kSkyWidth, kSkyHeight));
       }
       light.env_image = static_cast<int>(out_.scene.env_images.size() - 1);
-      if (auto scale = obj.optional("scale")) light.radiance = scale->rgb(kNonNegative);
+      if (auto scale = obj.optional("scale")) {
+        light.radiance = scale->rgb(kNonNegative);
+        check_scaled_image(out_.scene.env_images.back(), light.radiance, *scale);
+      }
       if (auto rotation = obj.optional("rotation")) light.env_rotation = read_rotation(*rotation);
       canonical["scale"] = to_json(light.radiance);
       canonical["rotation"] = to_json(light.env_rotation);
     } else {
       const JsonObject obj = value.object({"type", "position", "intensity"});
       light.kind = LightKind::kPoint;
-      light.position = obj.required("position").vec3();
+      const JsonValue position = obj.required("position");
+      light.position = position.vec3();
+      check_coordinates(light.position, position, "the light position");
       if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kNonNegative);
       canonical["position"] = to_json(light.position);
       canonical["intensity"] = to_json(light.intensity);
@@ -517,18 +628,8 @@ LoadedScene load_scene_json(const json& doc, const std::string& origin, const st
 
 LoadedScene load_scene_file(const std::string& path, const MemoryBudget& budget) {
   const std::string text = read_input_file(path, "the scene file", budget);
-  json doc;
-  try {
-    doc = json::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const json::parse_error& e) {
-    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column
-    // C: ..."; the bracketed id means nothing to a user.
-    std::string message = e.what();
-    const size_t id_end = message.find("] ");
-    if (id_end != std::string::npos) message = message.substr(id_end + 2);
-    throw SceneError(path + ": malformed JSON: " + message);
-  }
-  return load_scene_json(doc, path, fs::path(path).parent_path().string(), budget);
+  return load_scene_json(parse_json_document(text, path), path,
+                         fs::path(path).parent_path().string(), budget);
 }
 
 LoadedScene load_scene(const std::string& spec, const MemoryBudget& budget) {

@@ -130,7 +130,7 @@ TEST_F(CliTest, MalformedJsonNamesFileAndLine) {
   const Outcome run = snee("render '" + scene + "' --quiet");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_TRUE(contains(run.output, scene)) << run.output;
-  EXPECT_TRUE(contains(run.output, "line 3")) << run.output;
+  EXPECT_TRUE(contains(run.output, scene + ":3:15: malformed JSON")) << run.output;
 }
 
 TEST_F(CliTest, UnknownKeyNamesTheJsonPath) {

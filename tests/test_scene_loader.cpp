@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -27,6 +28,18 @@ constexpr const char* kInsideOutCubeObj =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"
     "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
 constexpr const char* kOpenSquareObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+const json kRemove = "<remove the key>";
+
+struct BadCase {
+  std::string name;
+  std::string pointer;      // JSON pointer of the value to replace, or to remove
+  json value;               // kRemove: remove the key
+  std::string path;         // expected JSON path in the message
+  std::string expectation;  // expected text in the message
+};
+
+json full_scene();
 
 class SceneLoaderTest : public ::testing::Test {
  protected:
@@ -71,6 +84,31 @@ class SceneLoaderTest : public ::testing::Test {
       EXPECT_NE(message.find(path + ":"), std::string::npos) << "path " << path << ": " << message;
       EXPECT_NE(message.find(expectation), std::string::npos)
           << "expectation '" << expectation << "': " << message;
+    }
+  }
+
+  // Each case edits full_scene() and expects its error.
+  void expect_errors(const std::vector<BadCase>& cases) {
+    for (const BadCase& c : cases) {
+      SCOPED_TRACE(c.name);
+      json doc = full_scene();
+      const json::json_pointer pointer(c.pointer);
+      if (c.value == kRemove) {
+        doc[pointer.parent_pointer()].erase(pointer.back());
+      } else {
+        doc[pointer] = c.value;
+      }
+      expect_error(doc, c.path, c.expectation);
+    }
+  }
+
+  // Loads `text` expecting a SceneError whose message contains `expected`.
+  void expect_text_error(const std::string& text, const std::string& expected) {
+    try {
+      load_text(text);
+      ADD_FAILURE() << "no SceneError; expected " << expected;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
   }
 
@@ -391,21 +429,66 @@ TEST_F(SceneLoaderTest, MissingAndMalformedFiles) {
     ADD_FAILURE();
   } catch (const SceneError& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find(scene_path()), std::string::npos) << message;
-    EXPECT_NE(message.find("malformed JSON"), std::string::npos) << message;
-    EXPECT_NE(message.find("line 3, column 15"), std::string::npos) << message;
+    EXPECT_NE(message.find(scene_path() + ":3:15: malformed JSON: "), std::string::npos) << message;
+    EXPECT_NE(message.find("expected string literal"), std::string::npos) << message;
+    EXPECT_EQ(message.find("json.exception"), std::string::npos) << message;
   }
 }
 
-const json kRemove = "<remove the key>";
+// Nesting this deep used to overflow the stack while the error message quoted the value.
+TEST_F(SceneLoaderTest, DeepNestingIsRefusedWhileParsing) {
+  for (const size_t depth : {size_t{100'000}, size_t{1'000'000}}) {
+    SCOPED_TRACE(depth);
+    expect_text_error("{\n  \"name\": " + std::string(depth, '[') + std::string(depth, ']') + "}",
+                      // The object is level 1, so the 100th bracket (column 11 + 99) is too deep.
+                      scene_path() + ":2:110: arrays and objects nested deeper than 100 levels");
+    expect_text_error(std::string(depth, '[') + "{\"a\": 1}" + std::string(depth, ']'),
+                      scene_path() + ":1:101: arrays and objects nested deeper than 100 levels");
+  }
+  // Up to the bound the document parses, and the loader's message names the path.
+  expect_text_error("{\"camera\": " + std::string(99, '[') + std::string(99, ']') + "}",
+                    scene_path() + ": camera: expected an object, got [[[[");
+}
 
-struct BadCase {
-  std::string name;
-  std::string pointer;      // JSON pointer of the value to replace, or to remove
-  json value;               // kRemove: remove the key
-  std::string path;         // expected JSON path in the message
-  std::string expectation;  // expected text in the message
-};
+// A value nested deeper than any parsed document may be (a caller building one in memory) is
+// quoted in messages without walking all of it.
+TEST_F(SceneLoaderTest, DeeplyNestedValueIsQuotedShortly) {
+  json deep = json::array();
+  for (int i = 0; i < 1'000'000; ++i) {
+    json outer = json::array();
+    outer.push_back(std::move(deep));
+    deep = std::move(outer);
+  }
+  json doc = full_scene();
+  doc["name"] = std::move(deep);
+  try {
+    load_scene_json(doc, "memory", dir_.string());
+    ADD_FAILURE() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "memory: name: expected a non-empty string, got " + std::string(37, '[') + "...");
+  }
+}
+
+TEST_F(SceneLoaderTest, NumberBeyondDoubleRangeNamesLineAndColumn) {
+  std::string text = full_scene().dump(2);
+  const std::string fov = "\"fov\": 35";
+  ASSERT_NE(text.find(fov), std::string::npos);
+  text.replace(text.find(fov), fov.size(), "\"fov\": 1e400");
+  const size_t at = text.find("1e400");
+  const size_t line = 1 + std::count(text.begin(), text.begin() + at, '\n');
+  const size_t column = at - text.rfind('\n', at) + 4;  // 1-based, at the last digit
+  expect_text_error(text,
+                    scene_path() + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                        ": the number 1e400 is beyond double range; expected a finite number");
+}
+
+// nlohmann's parser keeps the last of two equal keys; a scene refuses them, as it refuses
+// unknown keys, so that no written value is silently dropped.
+TEST_F(SceneLoaderTest, DuplicateKeyIsAnError) {
+  expect_text_error("{\n  \"name\": \"a\",\n  \"name\": \"b\"}",
+                    scene_path() + ":3:8: the key \"name\" appears twice in one object");
+}
 
 TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
   const std::vector<BadCase> cases = {
@@ -427,7 +510,7 @@ TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
       {"fov too large", "/camera/fov", 180, "camera.fov", "expected a number in (0, 180)"},
       {"fov zero", "/camera/fov", 0, "camera.fov", "expected a number in (0, 180)"},
       {"zero width", "/camera/resolution/0", 0, "camera.resolution[0]",
-       "expected an integer in [1, 65536], got 0"},
+       "expected an integer in [1, 32768], got 0"},
       {"fractional height", "/camera/resolution/1", 2.5, "camera.resolution[1]",
        "expected an integer"},
       {"resolution shape",
@@ -455,8 +538,10 @@ TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
       {"both parametrizations", "/media/1/sigma_s", 1, "media[1]",
        "either sigma_s (and optionally sigma_a) or albedo and mean_free_path"},
       {"g of one", "/media/0/g", 1, "media[0].g", "a number in (-1, 1)"},
-      {"ior zero", "/materials/0/ior", 0, "materials[0].ior", "expected a number > 0, got 0"},
-      {"negative ior", "/materials/0/ior", -1.5, "materials[0].ior", "expected a number > 0"},
+      {"ior zero", "/materials/0/ior", 0, "materials[0].ior",
+       "expected a number in [0.001, 1000], got 0"},
+      {"negative ior", "/materials/0/ior", -1.5, "materials[0].ior",
+       "expected a number in [0.001, 1000]"},
       {"roughness above one", "/materials/0/roughness", 1.5, "materials[0].roughness",
        "expected a number in [0, 1], got 1.5"},
       {"diffuse albedo",
@@ -538,17 +623,128 @@ TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
       {"empty integrator", "/render/integrator", "", "render.integrator", "a non-empty string"},
       {"shapes not a list", "/shapes", {{"type", "sphere"}}, "shapes", "expected an array"},
   };
-  for (const BadCase& c : cases) {
-    SCOPED_TRACE(c.name);
-    json doc = full_scene();
-    const json::json_pointer pointer(c.pointer);
-    if (c.value == kRemove) {
-      doc[pointer.parent_pointer()].erase(pointer.back());
-    } else {
-      doc[pointer] = c.value;
-    }
-    expect_error(doc, c.path, c.expectation);
+  expect_errors(cases);
+}
+
+// Embree aborts the process on a ray whose origin or direction reaches about 1.8e18, and
+// every one of these was accepted and reached it (SIGABRT); within the bound no ray can.
+TEST_F(SceneLoaderTest, CoordinatesBeyondTheBoundAreErrors) {
+  const std::string bound =
+      "is beyond the coordinate bound; expected every world-space "
+      "coordinate within +-1e+12";
+  const std::vector<std::pair<double, std::string>> values = {{1e19, "1e+19"}, {1e38, "1e+38"}};
+  for (const auto& [far, printed] : values) {
+    SCOPED_TRACE(far);
+    expect_errors({
+        {"camera position", "/camera/position/0", far, "camera.position",
+         "the camera position (" + printed + ", 1, 5)"},
+        {"camera position bound", "/camera/position/0", far, "camera.position", bound},
+        {"look_at", "/camera/look_at/2", -far, "camera.look_at", "the look_at point"},
+        {"sphere centre", "/shapes/2/center/1", far, "shapes[2]",
+         "reaches beyond the coordinate bound"},
+        {"sphere radius", "/shapes/2/radius", far, "shapes[2]",
+         "reaches beyond the coordinate bound"},
+        {"sphere scale", "/shapes/2/transform/0/scale", far, "shapes[2]",
+         "reaches beyond the coordinate bound"},
+        {"mesh translate", "/shapes/0/transform/0/translate/1", far, "shapes[0]",
+         "vertex 0 of " + (dir_ / "meshes" / "cube.obj").string() + ", after the transform at"},
+        {"mesh scale", "/shapes/0/transform/2/scale", far, "shapes[0]", bound},
+        {"normalized mesh scale", "/shapes/1/transform", {{{"scale", far}}}, "shapes[1]", bound},
+        {"matrix entry", "/shapes/3/transform/0/matrix/2/3", far, "shapes[3]",
+         "vertex 0 of the quad, after the transform at (-2, -1, " + printed + ")"},
+        {"matrix scale", "/shapes/3/transform/0/matrix/0/0", far, "shapes[3]", bound},
+        {"quad size (an area light)", "/shapes/3/size/0", far, "shapes[3]", bound},
+        {"point light", "/lights/5/position/2", far, "lights[5].position", "the light position"},
+    });
   }
+  // The bound itself is allowed, and so is a sphere touching it.
+  json doc = full_scene();
+  doc["camera"]["position"] = {1e12, -1e12, 1e12};
+  doc["shapes"][2]["transform"] = {{{"translate", {0, 0, 1e12 - 1e6}}}};
+  doc["shapes"][2]["radius"] = 1e6 / 2;  // scaled by 2
+  EXPECT_EQ(load(doc).scene.camera.position, Vec3(1e12f, -1e12f, 1e12f));
+}
+
+// The checks apply to the world-space result: an object far out and a transform bringing it
+// back is fine, and a transform too large for float is its own error.
+TEST_F(SceneLoaderTest, CoordinateBoundAppliesAfterTheTransform) {
+  json doc = full_scene();
+  doc["shapes"][2]["center"] = {0, 1e15, 0};
+  doc["shapes"][2]["radius"] = 1e14;
+  doc["shapes"][2]["transform"] = {{{"scale", 1e-6}}};
+  const Shape sphere = load(doc).scene.shapes[2];
+  EXPECT_FLOAT_EQ(sphere.center.y, 1e9f);
+  EXPECT_FLOAT_EQ(sphere.radius, 1e8f);
+  expect_errors({{"overflowing transform",
+                  "/shapes/3/transform",
+                  {{{"scale", 3e38}}, {{"scale", 3e38}}},
+                  "shapes[3].transform",
+                  "the combined transform has entries beyond single-precision range"}});
+}
+
+// Every number is checked as the float the program computes with, and so is every
+// coefficient derived from several of them.
+TEST_F(SceneLoaderTest, NumbersAreCheckedInSinglePrecision) {
+  expect_errors({
+      // 0.99999999 lies in (-1, 1) as a double but is 1 as a float.
+      {"g rounding to 1", "/media/0/g", 0.99999999, "media[0].g",
+       "expected a number in (-1, 1) in single precision, where it is 1, got 0.99999999"},
+      {"g rounding to -1", "/media/0/g", -0.99999999, "media[0].g", "where it is -1"},
+      {"fov rounding to 180", "/camera/fov", 179.999999, "camera.fov", "where it is 180"},
+      {"subnormal fov", "/camera/fov", 1e-45, "camera.fov",
+       "whose half-angle tangent is positive in single precision"},
+      {"mean free path rounding to 0", "/media/1/mean_free_path", 1e-50, "media[1].mean_free_path",
+       "a number > 0 in single precision, where it is 0"},
+      {"scale rounding to 0", "/shapes/0/transform/2/scale", 1e-50, "shapes[0].transform[2].scale",
+       "where it is 0"},
+      // 1 / 1e-39 overflows; times albedo 0 it was NaN, and the medium rendered as vacuum.
+      {"sigma_t overflowing",
+       "/media/1",
+       {{"name", "milk"}, {"albedo", 0}, {"mean_free_path", 1e-39}},
+       "media[1].mean_free_path",
+       "mean free paths whose inverse (sigma_t) is finite in single precision"},
+      {"sigma_s + sigma_a overflowing",
+       "/media/0",
+       {{"name", "skin"}, {"sigma_s", 3e38}, {"sigma_a", {0, 3e38, 0}}},
+       "media[0]",
+       "sigma_s + sigma_a (3e+38, inf, 3e+38) is beyond single-precision range"},
+      {"ior too small", "/materials/0/ior", 1e-5, "materials[0].ior",
+       "expected a number in [0.001, 1000]"},
+      // cos(0.001 degrees) is 1 in float: a cone of no solid angle gave no light.
+      {"cone without solid angle", "/lights/1/half_angle_degrees", 0.001,
+       "lights[1].half_angle_degrees", "whose cosine is below 1 in single precision"},
+      // env.exr's brightest pixel is 12: the radiance overflows.
+      {"env scale overflowing", "/lights/3/scale", 1e38, "lights[3].scale",
+       "a scale whose product with the image's brightest pixel (10, 11, 12) is finite"},
+      {"look_at at a subnormal distance",
+       "/camera/look_at",
+       {0, 1, 5 + 1e-30},
+       "camera.look_at",
+       "far enough from it (about 1e-19) to give a viewing direction"},
+  });
+}
+
+// Directions are scaled before normalizing: [3e38, 3e38, 3e38] used to normalize to 0 (its
+// squared length overflows), so the light gave nothing; [1e-30, 0, 0] to NaN.
+TEST_F(SceneLoaderTest, ExtremeDirectionsNormalize) {
+  json doc = full_scene();
+  doc["lights"][0]["direction"] = {3e38, 3e38, 3e38};
+  doc["lights"][1]["direction"] = {-1e-30, 0, 0};
+  doc["camera"]["up"] = {0, 3e38, 0};
+  doc["lights"][3]["rotation"] = {{{"rotate", {{"axis", {0, 3e38, 0}}, {"degrees", 90}}}}};
+  const LoadedScene loaded = load(doc);
+  const Scene& scene = loaded.scene;
+  const float third = 1 / std::sqrt(3.0f);
+  EXPECT_NEAR(scene.lights[0].direction.x, third, 1e-6f);
+  EXPECT_NEAR(scene.lights[0].direction.y, third, 1e-6f);
+  EXPECT_NEAR(scene.lights[0].direction.z, third, 1e-6f);
+  EXPECT_EQ(scene.lights[1].direction, Vec3(-1, 0, 0));
+  EXPECT_EQ(scene.camera.up, Vec3(0, 1, 0));
+  // The rotation about +y by 90 degrees takes +x to -z.
+  const Vec3 x = scene.lights[3].env_rotation.vector(Vec3(1, 0, 0));
+  EXPECT_NEAR(x.z, -1.0f, 1e-6f);
+  EXPECT_NEAR(length(x), 1.0f, 1e-6f);
+  expect_round_trip(loaded, scene_path());
 }
 
 TEST(BuiltinScenes, NamesAreUniqueAndCoverThePaperGrid) {
