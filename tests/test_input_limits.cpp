@@ -153,12 +153,13 @@ TEST_F(MaxMemoryCliTest, RejectsWhatIsNotASize) {
       << out.output;
 }
 
-// A 65536^2 film died of std::bad_alloc (or the OOM killer) part-way into allocating it.
+// A 65536^2 film died of std::bad_alloc (or the OOM killer) part-way into allocating it; the
+// largest film a scene may ask for (kMaxImageEdge^2) is counted against the budget first.
 TEST_F(MaxMemoryCliTest, FilmBeyondTheBudgetFailsBeforeRendering) {
-  const Outcome out = snee("render -q --threads 2 --max-memory 1G " + scene("65536, 65536"));
+  const Outcome out = snee("render -q --threads 2 --max-memory 1G " + scene("32768, 32768"));
   EXPECT_EQ(out.exit_code, 1) << out.output;
-  EXPECT_NE(out.output.find("the film and work buffers of 65536x65536 pixels on 2 threads need "
-                            "290.0 GiB, more than the memory budget of 1.0 GiB (--max-memory)"),
+  EXPECT_NE(out.output.find("the film and work buffers of 32768x32768 pixels on 2 threads need "
+                            "72.5 GiB, more than the memory budget of 1.0 GiB (--max-memory)"),
             std::string::npos)
       << out.output;
   EXPECT_FALSE(fs::exists(dir_ / "out" / "scene.exr"));
