@@ -45,7 +45,7 @@ for name in "${fuzzers[@]}"; do
   dir=$out/$name
   rm -rf "$dir"
   mkdir -p "$dir/corpus"
-  options=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=65536
+  options=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048
            -print_final_stats=1 -artifact_prefix="$dir/")
   dict=tests/fuzz/$name.dict
   [[ -f $dict ]] && options+=(-dict="$dict")
