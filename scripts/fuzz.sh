@@ -19,7 +19,10 @@ fuzzers=("$@")
 out=${SNEE_FUZZ_OUT:-out/fuzz}
 
 for tool in clang clang++; do
-  command -v "$tool" >/dev/null || { echo "error: $tool not found (bash scripts/setup.sh installs it)" >&2; exit 1; }
+  if ! command -v "$tool" >/dev/null; then
+    echo "error: $tool not found (bash scripts/setup.sh installs it)" >&2
+    exit 1
+  fi
 done
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
@@ -60,14 +63,14 @@ for name in "${fuzzers[@]}"; do
   if ((status != 0 || ${#artefacts[@]} > 0)); then
     failed+=("$name")
     echo "fuzz_$name FAILED (exit $status): ${artefacts[*]:-no artefact, see $dir/log}" >&2
-    grep -m1 -A12 -E '^==[0-9]+==ERROR|runtime error|^terminate called|out-of-memory|timeout after' \
-      "$dir/log" >&2 || tail -20 "$dir/log" >&2
+    first_report='^==[0-9]+== ?ERROR|runtime error|^terminate called'
+    grep -m1 -A12 -E "$first_report" "$dir/log" >&2 || tail -20 "$dir/log" >&2
   fi
 done
 
 if ((${#failed[@]} > 0)); then
-  echo "fuzzing found problems in: ${failed[*]} (reproduce: build-fuzz/tests/fuzz/fuzz_NAME ARTEFACT;" \
-    "shrink: add -minimize_crash=1 -runs=10000; then add it to tests/fuzz/corpus/NAME/)" >&2
+  echo "fuzzing found problems in: ${failed[*]}; reproduce with" \
+    "build-fuzz/tests/fuzz/fuzz_NAME ARTEFACT (tests/fuzz/README.md)" >&2
   exit 1
 fi
 echo "fuzzing: no findings in ${fuzzers[*]} (${seconds}s each)" >&2
