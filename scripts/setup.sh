@@ -11,6 +11,7 @@ packages=(
   libcli11-dev librandom123-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   clang-format
+  clang libclang-rt-dev
 )
 
 missing=()
