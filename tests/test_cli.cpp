@@ -16,6 +16,7 @@
 #include "apps/output_files.h"
 #include "scene/film.h"
 #include "tests/support/command_line.h"
+#include "tests/support/test_directory.h"
 
 namespace snee {
 namespace {
@@ -40,13 +41,7 @@ class CliTest : public ::testing::Test {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_cli_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_directory("cli"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs `snee ARGS` in the temporary directory, so default outputs land there too.

@@ -1,7 +1,6 @@
 // Environment images: channel handling and colour decoding for each kind of file OIIO writes.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -16,6 +15,7 @@
 
 #include "scene/env_image_io.h"
 #include "scene/scene_error.h"
+#include "tests/support/test_directory.h"
 
 namespace snee {
 namespace {
@@ -24,12 +24,7 @@ namespace fs = std::filesystem;
 
 class EnvImageIoTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_test_env_image_io_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_directory("test_env_image_io"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   template <typename T>

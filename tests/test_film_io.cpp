@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "scene/film.h"
+#include "tests/support/test_directory.h"
 
 namespace snee {
 namespace {
@@ -21,13 +22,7 @@ namespace fs = std::filesystem;
 
 class FilmIoTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_film_io_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_directory("film_io"); }
   void TearDown() override { fs::remove_all(dir_); }
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
 

@@ -3,7 +3,6 @@
 // it.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
@@ -16,6 +15,7 @@
 #include "scene/scene_loader.h"
 #include "tests/support/command_line.h"
 #include "tests/support/scene_error_of.h"
+#include "tests/support/test_directory.h"
 
 namespace snee {
 namespace {
@@ -24,12 +24,7 @@ namespace fs = std::filesystem;
 
 class InputLimitsTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_test_input_limits_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_directory("test_input_limits"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }

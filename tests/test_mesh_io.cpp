@@ -2,7 +2,6 @@
 // checks the scene loader relies on, on handmade files and on the project's test meshes.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <bit>
@@ -17,6 +16,7 @@
 #include "scene/mesh_topology.h"
 #include "scene/scene_error.h"
 #include "tests/support/scene_error_of.h"
+#include "tests/support/test_directory.h"
 
 namespace snee {
 namespace {
@@ -27,12 +27,7 @@ const std::string kSharedMeshes = "/work/shared/data/meshes";
 
 class MeshIoTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_test_mesh_io_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_directory("test_mesh_io"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   std::string write(const std::string& name, const std::string& contents) {

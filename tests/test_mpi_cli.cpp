@@ -15,6 +15,7 @@
 #include "scene/film.h"
 #include "tests/support/command_line.h"
 #include "tests/support/render_helpers.h"
+#include "tests/support/test_directory.h"
 
 namespace snee {
 namespace {
@@ -87,13 +88,7 @@ struct TwoRanks {
 
 class MpiSignals : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_mpi_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_directory("mpi"); }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;
 };

@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "tests/support/test_directory.h"
+
 namespace snee {
 namespace {
 
@@ -18,13 +20,7 @@ namespace fs = std::filesystem;
 
 class PerfCli : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_perf_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_directory("perf"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs `snee ARGS` in the temporary directory; returns the exit code, output in output_.

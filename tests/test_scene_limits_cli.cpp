@@ -2,7 +2,6 @@
 // same for a scene file and --resolution, and a scene beyond the coordinate bound is a scene
 // error (exit 2), never a render that Embree aborts.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -11,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/support/command_line.h"
+#include "tests/support/test_directory.h"
 
 namespace snee {
 namespace {
@@ -20,12 +20,7 @@ using nlohmann::json;
 
 class SceneLimitsCliTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_scene_limits_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
+  void SetUp() override { dir_ = test::fresh_test_directory("scene_limits"); }
   void TearDown() override { fs::remove_all(dir_); }
 
   // Writes a one-sphere scene with `camera` merged into its camera and returns its path.

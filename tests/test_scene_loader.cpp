@@ -2,7 +2,6 @@
 // names the file, the JSON path and the expectation, the canonical document reloads to the same
 // scene, and every built-in scene loads and is sane.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -16,6 +15,7 @@
 
 #include "scene/mesh_topology.h"
 #include "scene/scene_loader.h"
+#include "tests/support/test_directory.h"
 
 namespace snee {
 namespace {
@@ -44,9 +44,7 @@ json full_scene();
 class SceneLoaderTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("snee_test_scene_loader_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = test::fresh_test_directory("test_scene_loader");
     fs::create_directories(dir_ / "meshes");
     std::ofstream(dir_ / "meshes" / "cube.obj") << kInsideOutCubeObj;
     std::ofstream(dir_ / "meshes" / "square.obj") << kOpenSquareObj;
