@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Prints the SHA-1 of the pixels (not the metadata) of small renders of the default scene, the
+# paper grid and the furnaces, for every integrator and schedule: one line per render. Refactors
+# that promise unchanged images diff this output before and after (docs/architecture.md).
+# Needs iinfo (Debian package openimageio-tools). Usage: scripts/pixel-hashes.sh [BUILD_DIR]
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+snee=${1:-build}/apps/snee
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+scenes=(default furnace-sphere furnace-bunny furnace-sphere-null)
+for object in sphere bunny; do
+  for light in directional cone env; do
+    for surface in r0.2 r0.04 smooth; do
+      scenes+=("$object-$light-$surface")
+    done
+  done
+done
+for scene in "${scenes[@]}"; do
+  for integrator in pt snee sla; do
+    for schedule in local megakernel global; do
+      image="$out/$scene-$integrator-$schedule.exr"
+      "$snee" render "builtin:$scene" --integrator "$integrator" --schedule "$schedule" \
+        --spp 4 --resolution 24x24 --threads 2 -q -o "$image" >/dev/null
+      echo "$scene $integrator $schedule $(iinfo --hash "$image" | sed -n 's/.*SHA-1: //p')"
+    done
+  done
+done
