@@ -1,4 +1,4 @@
-// The path tracer's exit events seen from SNEE (docs/snee.md 3.6): when the random walk leaves
+// The path tracer's exit events seen from SNEE (docs/method.md 3.6): when the random walk leaves
 // a medium through a dielectric boundary right after two medium vertices x_i -> x_j, the last
 // two segments are themselves one of four strategies for the suffix x_i -> x_j -> x_k -> light.
 // Their light contributions then need the four-way MIS weight, whose SNEE pdfs depend on

@@ -167,7 +167,7 @@ inline constexpr int32_t kVisibilityOnly = -2;
 // A pending light connection: radiance that reaches the path's pixel if every one of its
 // segments is unoccluded. A SNEE or exit-event connection may also carry a `selector`
 // segment whose visibility does not gate the contribution but picks between two MIS-weighted
-// values (docs/snee.md 3.6: the weight needs V_first(x_i, x_k)).
+// values (docs/method.md 3.6: the weight needs V_first(x_i, x_k)).
 // What produced a connection, for the statistics of failed connections.
 enum class ConnectionKind : uint8_t { kLight, kTopToBottom, kBottomToTop };
 

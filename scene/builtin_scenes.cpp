@@ -1,7 +1,7 @@
 // Built-in scenes, written as the same JSON documents a user would write (so they go through
 // the one loader and `canonical` shows each of them as a file), except for the procedural sky.
 //
-// The test grid follows the SNEE paper's results figure (docs: snee.md sections 1.1 and 6): a
+// The test grid follows the SNEE paper's results figure (docs/method.md sections 1.1 and 6): a
 // unit-size translucent object behind a dielectric of IOR 1.5 with GGX roughness 0.2, 0.04 or
 // smooth, under a directional light, a cone light of 2.67 degrees half-angle (about 100x the
 // sun's solid angle) with the same irradiance, or a low-frequency environment. The paper does

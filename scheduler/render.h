@@ -58,7 +58,7 @@ struct RenderOptions {
   // raster index is `shard` modulo `shard_count` are rendered, the other pixels stay black.
   int shard = 0;
   int shard_count = 1;
-  SneeOptions snee;  // open choices of docs/snee.md section 7 (integrator "snee")
+  SneeOptions snee;  // open choices of docs/method.md section 7 (integrator "snee")
   // The film, sample buffers and workspaces together must fit, or render() refuses before
   // allocating any of them.
   MemoryBudget memory_budget;

@@ -1,6 +1,6 @@
 // Dielectric interface: Fresnel and Snell, the smooth (delta) sampler, the rough GGX BSDF
 // (sample/eval/pdf consistency, chi-square per lobe, reciprocity under the eta^2 convention,
-// energy bound) and the transmission-only sampler used by SNEE (docs/snee.md 4.3-4.5, 5.1-5.2).
+// energy bound) and the transmission-only sampler used by SNEE (docs/method.md 4.3-4.5, 5.1-5.2).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,7 +47,7 @@ double relative_error(double a, double b) {
   return std::fabs(a - b) / std::max(std::fabs(a), std::fabs(b));
 }
 
-// Fresnel reflectance in double (docs/snee.md 4.3): the reference for the float code and the
+// Fresnel reflectance in double (docs/method.md 4.3): the reference for the float code and the
 // source of its conditioning.
 double fresnel_reference(double c, double eta) {
   const double g2 = eta * eta - 1 + c * c;
@@ -350,7 +350,7 @@ TEST(RoughDielectric, SamplesFollowPdf) {
   }
 }
 
-// With the camera-side BTDF, f(o <- i) / eta_o^2 is symmetric (docs/snee.md 4.5).
+// With the camera-side BTDF, f(o <- i) / eta_o^2 is symmetric (docs/method.md 4.5).
 TEST(RoughDielectric, ReciprocalUnderEtaSquaredConvention) {
   TestRng rng(15);
   for (const float alpha : kAlphas) {
@@ -399,7 +399,7 @@ TEST(RoughDielectric, EnergyIsBounded) {
 }
 
 // dielectric_pdf of a transmission = p^T(s | g) times the refraction probability 1 - F at the
-// half vector (docs/snee.md 4.4, last bullet).
+// half vector (docs/method.md 4.4, last bullet).
 TEST(RoughDielectric, TransmissionPdfIsTransmissionOnlyPdfTimesOneMinusFresnel) {
   TestRng rng(17);
   for (const float alpha : kAlphas) {
@@ -456,7 +456,7 @@ TEST(TransmissionSampler, PdfMatchesSampledNormal) {
 }
 
 // The integral of p^T(. | g) is the sampler's success probability: below 1 from inside (TIR) and
-// slightly below 1 from outside (normals facing away from g are rejected). docs/snee.md 5.2
+// slightly below 1 from outside (normals facing away from g are rejected). docs/method.md 5.2
 // lists 1.0000, 0.8585 and 0.0254 for the first three cases from a sampler that keeps
 // back-facing normals; the values here differ by that convention (printed for comparison).
 TEST(TransmissionSampler, IntegralEqualsSuccessRate) {

@@ -1,4 +1,4 @@
-// White furnace (docs/snee.md 5.5): an albedo-1 medium inside a smooth dielectric under a
+// White furnace (docs/method.md 5.5): an albedo-1 medium inside a smooth dielectric under a
 // uniform environment of radiance 1 is invisible, for any index of refraction. Holds for the
 // sphere and the bunny, with a dielectric and an index-matched boundary, and for every
 // unbiased integrator.

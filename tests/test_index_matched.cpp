@@ -1,5 +1,5 @@
 // An index-matched (eta = 1) dielectric boundary and a null boundary bound the same medium and
-// must give the same image in expectation (docs/snee.md 5.6): the first is a delta interface
+// must give the same image in expectation (docs/method.md 5.6): the first is a delta interface
 // that pt can only cross by BSDF sampling, the second is invisible, so lights are reached by
 // straight NEE from medium vertices. Agreement checks free flight, spectral MIS, NEE through
 // boundaries with transmittance tracking, and the MIS between phase sampling and lights.
@@ -62,11 +62,11 @@ TEST(IndexMatched, NullBoundaryEqualsEtaOneDielectric) {
   expect_sphere_images_agree(with_surface, a, b);
 }
 
-// docs/snee.md 5.6: behind an index-matched dielectric, SNEE's refraction is the identity and
+// docs/method.md 5.6: behind an index-matched dielectric, SNEE's refraction is the identity and
 // its connections are ordinary volumetric NEE, so snee on the eta = 1 boundary must equal pt's
 // straight NEE through an invisible boundary. The lights are the cone and the environment
 // (case C): with a directional light (case D) single scattering is produced by neither pt nor
-// SNEE behind a delta interface (docs/snee.md 3.8), so the images would rightly differ by it.
+// SNEE behind a delta interface (docs/method.md 3.8), so the images would rightly differ by it.
 TEST(IndexMatched, SneeThroughEtaOneEqualsStraightNee) {
   RenderOptions options;
   options.spp = 256;

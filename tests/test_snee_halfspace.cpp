@@ -1,9 +1,9 @@
-// SNEE in the analytic half-space (docs/snee.md 5.9-5.10, 5.4, 5.7): medium z < 0 below the
+// SNEE in the analytic half-space (docs/method.md 5.9-5.10, 5.4, 5.7): medium z < 0 below the
 // plane z = 0 (outward normal +z), x_i = (0, 0, -0.4), isotropic phase, sigma_s = 1,
 // sigma_a = 0.2, eta = 1.5, light axis normalize(0.5, 0.2, 1), cone half-angle 0.3 rad with
 // radiance 1, or a directional light of irradiance 1. Visibility is analytic: a segment is clear
 // iff it stays in z <= 0, light rays always escape, and the probe ray from x_i hits the plane iff
-// it points up. Every strategy estimates I(x_i) of docs/snee.md 1.3 alone, and the four-way MIS
+// it points up. Every strategy estimates I(x_i) of docs/method.md 1.3 alone, and the four-way MIS
 // combination must agree with them, with the reference table of 5.10, and (smooth cases) with a
 // deterministic quadrature of the case-D integral.
 #include <gtest/gtest.h>
@@ -213,7 +213,7 @@ class HalfSpace {
 };
 
 // I(x_i) for a smooth interface lit by a directional light from direction w_l (irradiance 1),
-// by quadrature (docs/snee.md Appendix B): with x_j = x_k + t w_r (w_r the refracted light
+// by quadrature (docs/method.md Appendix B): with x_j = x_k + t w_r (w_r the refracted light
 // direction, cos_r = -w_r.z) the reduced case-D integral over dA(x_k) dt becomes a volume
 // integral dV(x_j) / cos_r of exp(-sigma_t r_ij) / r_ij^2 exp(-sigma_t |z_j| / cos_r); in
 // spherical coordinates around x_i it depends only on mu = cos(polar angle), and the radial
@@ -277,7 +277,7 @@ Reference of(const MeanEstimator& e) {
   return {e.mean(), e.standard_error()};
 }
 
-// Strategy isolation (docs/snee.md 5.4): every strategy that can produce the case estimates the
+// Strategy isolation (docs/method.md 5.4): every strategy that can produce the case estimates the
 // same integral as the combination.
 void expect_isolation(const Estimators& e, bool tb, bool bt, bool ub, bool ul) {
   if (tb) expect_agrees("TB alone vs MIS", e.top_to_bottom, of(e.mis));
@@ -376,9 +376,9 @@ TEST(SneeHalfSpace, CaseDSmoothDirectional) {
   EXPECT_EQ(e.unidirectional_light.mean(), 0.0);
 }
 
-// Limits (docs/snee.md 5.7): a nearly smooth rough interface under the directional light
+// Limits (docs/method.md 5.7): a nearly smooth rough interface under the directional light
 // approaches case D. U_L is not compared here: at alpha = 0.01 it is heavy-tailed and its
-// sample standard error is not trustworthy at this sample count (docs/snee.md 5.10).
+// sample standard error is not trustworthy at this sample count (docs/method.md 5.10).
 TEST(SneeHalfSpace, RoughToSmoothLimit) {
   const Scene scene = directional_scene();
   const Estimators e = HalfSpace({kEta, 0.01f}, scene).run(kSamples, 106);

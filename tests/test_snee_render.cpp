@@ -1,4 +1,4 @@
-// Whole-image checks of the snee integrator against the path tracer (docs/snee.md 5.4-5.8): on
+// Whole-image checks of the snee integrator against the path tracer (docs/method.md 5.4-5.8): on
 // the paper-grid scenes where pt converges both must agree region by region; every strategy
 // alone must agree with the four-way MIS; the rough -> smooth and cone -> directional limits
 // must be continuous; and with a smooth boundary and a directional light, where pt sees no

@@ -1,4 +1,4 @@
-// SNEE's samplers and densities (docs/snee.md 5.1-5.3): sampling-time pdfs against the
+// SNEE's samplers and densities (docs/method.md 5.1-5.3): sampling-time pdfs against the
 // stand-alone pdf functions, normalisation, chi-square fits, and the MIS weights' partition of
 // unity with exact zeros where a strategy cannot produce a path.
 #include <gtest/gtest.h>
@@ -30,7 +30,7 @@ using test::uniforms;
 
 // Sampling-time and stand-alone pdfs are computed along different routes (sampling variables
 // vs. the produced float point); they agree to float rounding amplified by the pdf's
-// sensitivity, well inside this bound for the configurations below (docs/snee.md 5.1).
+// sensitivity, well inside this bound for the configurations below (docs/method.md 5.1).
 constexpr double kRoundTripTolerance = 1e-5;
 // Adaptive quadrature of float-valued pdfs.
 constexpr double kQuadratureTolerance = 1e-5;

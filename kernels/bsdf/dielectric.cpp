@@ -37,7 +37,7 @@ LobeValue rough_reflection(const DielectricParams& p, Vec3 wo, Vec3 wi, Vec3 h) 
 
 // Transmission of the pair (wo, wi), on opposite sides, through h (h.z > 0): Walter et al. 2007
 // eq. 21 for f, and the half-vector Jacobian with the sampled direction's index (wi's) in the
-// numerator for the pdf (docs/snee.md 4.4).
+// numerator for the pdf (docs/method.md 4.4).
 LobeValue rough_transmission(const DielectricParams& p, Vec3 wo, Vec3 wi, Vec3 h) {
   const float wo_h = dot(wo, h), wi_h = dot(wi, h);
   if (wo_h * wo.z <= 0.0f || wi_h * wi.z <= 0.0f) return {};
@@ -62,7 +62,7 @@ Vec3 reflection_half_vector(Vec3 wo, Vec3 wi) {
   return h.z < 0.0f ? -h : h;
 }
 
-// Generalised half vector of a transmission pair (docs/snee.md 4.4), oriented to +z; zero when
+// Generalised half vector of a transmission pair (docs/method.md 4.4), oriented to +z; zero when
 // the pair is a straight line through an index-matched interface.
 Vec3 transmission_half_vector(Vec3 a, float eta_a, Vec3 b, float eta_b) {
   const Vec3 h = eta_a * a + eta_b * b;

@@ -2,7 +2,7 @@
 // frame of the surface with the *outward* normal = +z. The interior has index `eta` relative
 // to the exterior. All directions point away from the surface. Radiance mode: `wo` is the
 // camera side, `wi` the light side; transmission carries the (eta_o / eta_i)^2 factor
-// (docs/snee.md section 4.5). The pdfs include the reflect/transmit selection probability,
+// (docs/method.md section 4.5). The pdfs include the reflect/transmit selection probability,
 // which is the Fresnel reflectance of the sampled (micro)normal. Microfacet normals are drawn
 // from D(m) m.z (not visible normals); a normal facing away from wo makes the sample fail, so
 // the rough pdfs integrate to the success probability (< 1 at grazing angles).
@@ -48,7 +48,7 @@ float dielectric_eval(const DielectricParams& p, Vec3 wo, Vec3 wi);
 // Pdf of dielectric_sample producing wi from wo (solid angle); 0 for a delta interface.
 float dielectric_pdf(const DielectricParams& p, Vec3 wo, Vec3 wi);
 
-// Transmission-only sampling used by SNEE (docs/snee.md 4.4): given direction g on one side,
+// Transmission-only sampling used by SNEE (docs/method.md 4.4): given direction g on one side,
 // produce s on the other side by refracting through a GGX-sampled normal (or the macro normal
 // when delta). No lobe selection factor. Returns false on TIR, if the normal faces away from g,
 // or if s ends on g's side.

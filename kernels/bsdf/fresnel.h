@@ -7,7 +7,7 @@ namespace snee {
 
 // Reflectance for light arriving with cosine cos_i (> 0) on the side of index eta_i, the other
 // side having index eta_t; eta = eta_t / eta_i. Returns 1 under total internal reflection.
-// The value is the same from both sides of a refraction pair (docs/snee.md 4.3).
+// The value is the same from both sides of a refraction pair (docs/method.md 4.3).
 inline float fresnel_dielectric(float cos_i, float eta) {
   const float c = std::clamp(cos_i, 0.0f, 1.0f);
   const float g2 = eta * eta - 1.0f + c * c;

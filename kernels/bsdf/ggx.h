@@ -1,6 +1,6 @@
 // GGX (Trowbridge-Reitz) microfacet distribution with Smith separable shadowing, in the local
 // frame of the macro surface (normal = +z). alpha is used directly (no perceptual remap).
-// Formulas: Walter et al. 2007 and docs/snee.md 4.4. Unit vectors are assumed, so that
+// Formulas: Walter et al. 2007 and docs/method.md 4.4. Unit vectors are assumed, so that
 // sin^2 = x^2 + y^2 avoids the cancellation of 1 - z^2 near the pole for small alpha.
 #pragma once
 

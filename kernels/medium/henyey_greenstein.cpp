@@ -3,7 +3,7 @@
 namespace snee {
 
 Vec3 hg_sample(Vec3 w_before, float g, Vec2 u, float* pdf) {
-  // The inverse CDF of docs/snee.md 1.1, mu = (1 + g^2 - r^2) / 2g with r = (1 - g^2) / (1 + g s)
+  // The inverse CDF of docs/method.md 1.1, mu = (1 + g^2 - r^2) / 2g with r = (1 - g^2) / (1 + g s)
   // and s = 2u - 1, multiplied out so the division by g cancels. It is then exact as g -> 0
   // (mu = s, uniform) and needs no |g| < 1e-3 branch, whose uniform sampling would not match
   // the pdf hg_phase reports.

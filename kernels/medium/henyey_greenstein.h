@@ -1,5 +1,5 @@
 // Henyey-Greenstein phase function over *propagation* directions (g > 0 scatters forward),
-// docs/snee.md 1.1.
+// docs/method.md 1.1.
 #pragma once
 
 #include "kernels/sampling.h"

@@ -1,5 +1,5 @@
 // Distance samplers along a ray o + t w, t in [0, inf), used by top-to-bottom subdivision to
-// place the middle vertex x_j on the refracted light ray (docs/snee.md 4.2). The distances are
+// place the middle vertex x_j on the refracted light ray (docs/method.md 4.2). The distances are
 // untruncated (Q3): a point beyond the boundary is rejected by a visibility test instead, so the
 // pdfs can be evaluated for any path without knowing where the ray leaves the medium.
 #pragma once

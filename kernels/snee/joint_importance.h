@@ -1,7 +1,7 @@
 // Bottom-to-top placement of the middle vertex x_j between a medium vertex x_i and an exit point
-// x_k (docs/snee.md 3.4 and Appendix A). The geometric lobe draws x_j over all of R^3 with density
-// proportional to 1 / (r_ij^2 r_jk^2), the product of the two inverse-square geometry terms of
-// the connection x_i -> x_j -> x_k:
+// x_k (docs/method.md 3.4 and Appendix A). The geometric lobe draws x_j over all of R^3 with
+// density proportional to 1 / (r_ij^2 r_jk^2), the product of the two inverse-square geometry terms
+// of the connection x_i -> x_j -> x_k:
 //   p(x_j) = d / (pi^3 r_ij^2 r_jk^2),  d = |x_k - x_i|,
 // by choosing the direction at x_i with density (pi - gamma) / (pi^3 sin gamma), gamma the angle
 // to x_k, and then the distance equiangularly toward x_k along that half-line. For an anisotropic

@@ -1,4 +1,4 @@
-// The probe ray that finds SNEE's exit point (docs/snee.md 3.2): a random direction at the
+// The probe ray that finds SNEE's exit point (docs/method.md 3.2): a random direction at the
 // medium vertex x_i; the first boundary hit along it is x_k, shared by both subdivision
 // strategies. Its density is converted to area measure at x_k so that it can be compared with
 // the tracer's own way of reaching x_k.

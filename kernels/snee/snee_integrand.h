@@ -1,6 +1,6 @@
-// The measurement contribution of a SNEE suffix (docs/snee.md 1.3), in the measure of
+// The measurement contribution of a SNEE suffix (docs/method.md 1.3), in the measure of
 // suffix_measure(s), with all visibility factors taken as 1 (the caller's shadow rays decide
-// them). Deltas are integrated out as in docs/snee.md 3.7:
+// them). Deltas are integrated out as in docs/method.md 3.7:
 //   A (rough, non-delta light):  F = f_p(w_in.w_ij) T_ij / r_ij^2  sigma_s  f_p(w_ij.w_jk)
 //                                    T_jk cos_kj / r_jk^2  f_t(w_kj <- w_o) cos_o L_e
 //   B (rough, delta light):      A with L_e replaced by the irradiance E

@@ -1,4 +1,4 @@
-// The open choices of docs/snee.md section 7, with the spec's recommendations as defaults. None
+// The open choices of docs/method.md section 7, with the spec's recommendations as defaults. None
 // of them changes the expected image; they trade variance only (and, for the enabled-strategy
 // set, select which part of the handled transport is rendered: see StrategySet).
 #pragma once
@@ -8,7 +8,7 @@
 
 namespace snee {
 
-// The four ways the suffix x_i -> x_j -> x_k -> light can be produced (docs/snee.md 3.6).
+// The four ways the suffix x_i -> x_j -> x_k -> light can be produced (docs/method.md 3.6).
 enum class Strategy : uint8_t {
   kTopToBottom,          // TB: light -> x_k -> x_j, then connect to x_i
   kBottomToTop,          // BT: x_i -> x_j (joint importance), connect to x_k, BTDF to the light
@@ -18,7 +18,7 @@ enum class Strategy : uint8_t {
 inline constexpr int kStrategyCount = 4;
 
 // Bit set of strategies allowed to carry weight on the suffixes SNEE handles. Disabling some
-// isolates the others (docs/snee.md 5.4): the remaining strategies share the handled class, the
+// isolates the others (docs/method.md 5.4): the remaining strategies share the handled class, the
 // disabled ones get weight 0 there. Suffixes SNEE cannot produce always keep the tracer's own
 // two-way weights, so a full render stays unbiased whenever every path the enabled set can
 // reach is reachable (e.g. "TB only" in every case, "U_B only" in cases A and C).

@@ -1,7 +1,7 @@
-// One density function per strategy that can produce a SNEE suffix (docs/snee.md 3.3-3.7), and
+// One density function per strategy that can produce a SNEE suffix (docs/method.md 3.3-3.7), and
 // the multi-sample MIS weights built from them. Every place that weights a suffix (the
 // subdivision strategies and the tracer's exit events) calls these, so the weights of the
-// strategies that can produce a path always sum to one (docs/snee.md 3.6, correctness rule).
+// strategies that can produce a path always sum to one (docs/method.md 3.6, correctness rule).
 //
 // All path densities are in the measure of suffix_measure(s) (cases A-D) and are 0 wherever the
 // strategy cannot produce the suffix; in particular the probe-based ones are 0 unless

@@ -1,4 +1,4 @@
-// The two subdivision strategies of SNEE (docs/snee.md 3.3-3.4) and the MIS weight of the
+// The two subdivision strategies of SNEE (docs/method.md 3.3-3.4) and the MIS weight of the
 // tracer's own exit events (3.6). No ray is traced here: each strategy returns a candidate whose
 // contribution counts only if every listed segment is unoccluded, so the renderer can resolve
 // visibility in batches.
@@ -6,7 +6,7 @@
 // Both strategies start from a medium vertex x_i (with the propagation direction arriving there)
 // and an exit point x_k found by a probe ray from x_i (probe.h), which the caller has checked to
 // be the first hit, on the medium's dielectric boundary. The contribution excludes the path
-// throughput up to x_i (docs/snee.md 1.2: it includes sigma_s(x_i), not the phase function at
+// throughput up to x_i (docs/method.md 1.2: it includes sigma_s(x_i), not the phase function at
 // x_i); the renderer multiplies it in.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The path suffix SNEE estimates at a medium vertex x_i (docs/snee.md 1.2):
+// The path suffix SNEE estimates at a medium vertex x_i (docs/method.md 1.2):
 //   x_i (medium) -> x_j (medium) -> x_k (exit point on the dielectric boundary) -> light along
 //   omega_o,
 // described once so that every strategy's pdf, the integrand and the MIS weights are computed
@@ -43,7 +43,7 @@ struct SneeSuffix {
 
 // The deltas of a smooth interface and of a directional light remove dimensions from the path
 // space, so each combination has its own measure and its own set of strategies that can produce
-// a path in it (docs/snee.md 3.7, cases A-D). "Smooth" means DielectricParams::delta(): an
+// a path in it (docs/method.md 3.7, cases A-D). "Smooth" means DielectricParams::delta(): an
 // index-matched interface refracts straight through whatever its roughness.
 enum class SuffixMeasure {
   kFull,            // A: rough interface, non-delta light: dV(x_j) dA(x_k) dsigma(omega_o)

@@ -22,7 +22,7 @@ inline Scene light_scene(LightKind kind, Rgb radiance = Rgb(1.0f)) {
   return scene;
 }
 
-// An interface and a light, one of the measures A-D of docs/snee.md 3.7.
+// An interface and a light, one of the measures A-D of docs/method.md 3.7.
 struct SneeCase {
   const char* name;
   DielectricParams interface;
