@@ -5,7 +5,7 @@
 // atan2(sin gamma, -cos gamma), and the equiangular step uses psi = pi/2 - theta =
 // (1 - u3)(pi - gamma) with tan(theta) = cot(psi). The density uses the same variables:
 // r_jk = h / sin(psi). Agreement with the scalar sampler is measured in
-// tests/test_snee_weights_batch.cpp and stated in README.md.
+// tests/test_snee_batch.cpp and stated in README.md.
 #pragma once
 
 #include <limits>

@@ -11,7 +11,7 @@
 // rather than pi/2 - atan2(-delta, h), and the joint-importance density's geometric lobe is
 // written with its (pi - gamma) / sin(gamma) factors cancelled. A lane whose densities or
 // integrand still leave float's range is flagged, and the caller weighs it with the scalar
-// function. Agreement with the scalar functions is measured in tests/test_snee_weights_batch.cpp
+// function. Agreement with the scalar functions is measured in tests/test_snee_batch.cpp
 // and stated in README.md.
 #pragma once
 

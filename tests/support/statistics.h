@@ -25,7 +25,7 @@ class MeanEstimator {
   double mean_ = 0, m2_ = 0;
 };
 
-// |a - b| / sqrt(se_a^2 + se_b^2); agreement in this suite means z < 4 (docs/testing.md).
+// |a - b| / sqrt(se_a^2 + se_b^2); agreement in this suite means z < 4 (tests/README.md).
 double z_score(double a, double se_a, double b, double se_b);
 
 // P(X >= x) for X ~ chi-square with dof degrees of freedom.
