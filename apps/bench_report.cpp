@@ -1,6 +1,7 @@
 #include "apps/bench_report.h"
 
 #include <array>
+#include <optional>
 
 #include "apps/stats_json.h"
 
@@ -32,8 +33,13 @@ struct Figures {
   double vs_closest_single = 0;  // total rays per CPU-second / raw closest-hit single-ray rate
   double traversal_bound = 0;    // CPU time raw traversal of these rays takes / CPU time taken
   std::array<double, kStages> stage_share{};  // of thread time (threads x wall clock)
-  double other_share = 0;                     // thread time outside every stage
-  double extend_batch = 0;                    // mean rays per extend stage call
+  // Thread time outside every stage, when the stages' sum leaves some. Stage times are sampled
+  // on one turn in timing_period and scaled up (scheduler/work_unit.cpp), so their sum can
+  // exceed the thread time; then the rest is unknown and stage_excess says by how much.
+  std::optional<double> other_share;
+  double stage_excess = 0;
+  MeasurementCheck check;
+  double extend_batch = 0;  // mean rays per extend stage call
 };
 
 Figures figures(const BenchRun& run, const EmbreeThroughput& raw) {
@@ -41,7 +47,8 @@ Figures figures(const BenchRun& run, const EmbreeThroughput& raw) {
   Figures f;
   f.seconds = s.sampling_seconds;
   f.cpu_seconds = s.sampling_cpu_seconds;
-  f.cpu_share = f.seconds > 0 ? f.cpu_seconds / (f.seconds * run.threads) : 0;
+  f.check = check_measurement(f.seconds, f.cpu_seconds, run.threads);
+  f.cpu_share = f.check.cpu_share;
   auto per = [](double count, double seconds) { return seconds > 0 ? count / seconds : 0; };
   f.paths_per_second = per(static_cast<double>(s.paths), f.seconds);
   f.paths_per_cpu_second = per(static_cast<double>(s.paths), f.cpu_seconds);
@@ -64,7 +71,10 @@ Figures figures(const BenchRun& run, const EmbreeThroughput& raw) {
     f.stage_share[i] = per(s.stage_seconds[i], thread_seconds);
     staged += f.stage_share[i];
   }
-  f.other_share = 1 - staged;
+  if (staged <= 1)
+    f.other_share = 1 - staged;
+  else
+    f.stage_excess = staged - 1;
   const uint64_t extend_calls = s.stage_calls[static_cast<int>(Stage::kExtend)];
   f.extend_batch = extend_calls > 0 ? static_cast<double>(s.rays[0] + s.rays[1]) /
                                           static_cast<double>(extend_calls)
@@ -147,7 +157,16 @@ void print_bench_result(std::FILE* out, const BenchResult& r) {
     const Figures f = figures(run, r.raw);
     std::fprintf(out, "   %-10s %3d", run.schedule.c_str(), run.threads);
     for (int i = 0; i < kStages; ++i) std::fprintf(out, " %7.1f%%", 100 * f.stage_share[i]);
-    std::fprintf(out, " %7.1f%%\n", 100 * f.other_share);
+    if (f.other_share)
+      std::fprintf(out, " %7.1f%%\n", 100 * *f.other_share);
+    else
+      std::fprintf(out, " %8s  (stages sum to %.1f%% more than the thread time)\n", "n/a",
+                   100 * f.stage_excess);
+  }
+  for (const BenchRun& run : r.runs) {
+    for (const std::string& warning : figures(run, r.raw).check.warnings)
+      std::fprintf(stderr, "warning: %s, %s, %d thread(s): %s\n", w.name.c_str(),
+                   run.schedule.c_str(), run.threads, warning.c_str());
   }
 }
 
@@ -189,7 +208,10 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
           {"traversal_bound_fraction", f.traversal_bound}}},
         {"vs_megakernel", {{"paths_per_second", ratio[0]}, {"paths_per_cpu_second", ratio[1]}}},
         {"stages", stages},
-        {"other_share_of_thread_time", f.other_share},
+        {"other_share_of_thread_time",
+         f.other_share ? nlohmann::ordered_json(*f.other_share) : nlohmann::ordered_json()},
+        {"stage_excess_share_of_thread_time", f.stage_excess},
+        {"warnings", f.check.warnings},
         {"queue_capacity", run.queue_capacity},
         {"queue_occupancy", s.queue_occupancy},
         {"simd", simd_lanes_json(s)},

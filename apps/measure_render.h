@@ -5,6 +5,7 @@
 // turn), so a burst of other work slows them alike.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "scene/scene.h"
@@ -27,5 +28,19 @@ class Measurement {
 };
 
 Measurement measure_render(const Scene& scene, const RenderOptions& options, int repeats);
+
+// Whether a timed run measured the renderer rather than the machine around it. A run that got
+// less than kFairCpuShare of the CPU it asked for (CPU time / (wall time x threads)) shared its
+// cores with other work or had fewer than it asked for; one under kShortestFairSeconds of
+// sampling is dominated by thread start-up, the first touches of memory and timer resolution.
+// Either way its rates understate (or misstate) the renderer, so they are reported with a
+// warning rather than silently.
+inline constexpr double kFairCpuShare = 0.9;
+inline constexpr double kShortestFairSeconds = 1.0;
+struct MeasurementCheck {
+  double cpu_share = 0;               // CPU time / (wall time x threads); 0 without wall time
+  std::vector<std::string> warnings;  // empty when the run is fair by both measures
+};
+MeasurementCheck check_measurement(double wall_seconds, double cpu_seconds, int threads);
 
 }  // namespace snee

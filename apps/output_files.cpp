@@ -75,9 +75,32 @@ void replace_file(const fs::path& file, const std::function<void(const std::stri
   }
 }
 
-void write_images(const Film& film, const fs::path& exr, const fs::path& png) {
-  replace_file(exr, [&](const std::string& p) { write_exr(film, p); });
-  replace_file(png, [&](const std::string& p) { write_preview(film, p); });
+bool is_output_extension(const fs::path& extension) {
+  for (const char* known : {".exr", ".png", ".jpg", ".jpeg", ".hdr"})
+    if (extension == known) return true;
+  return false;
+}
+
+OutputImages output_images(const fs::path& requested) {
+  OutputImages images;
+  if (requested.extension() == ".exr") {
+    images.exr = requested;
+    images.view = fs::path(requested).replace_extension(".png");
+  } else {
+    images.exr = fs::path(requested).replace_extension(".exr");
+    images.view = requested;
+  }
+  return images;
+}
+
+void write_images(const Film& film, const OutputImages& images) {
+  replace_file(images.exr, [&](const std::string& p) { write_exr(film, p, images.attributes); });
+  replace_file(images.view, [&](const std::string& p) {
+    if (images.view.extension() == ".hdr")
+      write_hdr(film, p);
+    else
+      write_preview(film, p, images.tone);
+  });
 }
 
 uintmax_t exr_bytes_bound(int width, int height) {
@@ -86,8 +109,9 @@ uintmax_t exr_bytes_bound(int width, int height) {
                        kBytesPerPixel);
 }
 
-uintmax_t png_bytes_bound(int width, int height) {
-  return with_headroom(static_cast<uintmax_t>(width) * static_cast<uintmax_t>(height) * 3);
+uintmax_t view_bytes_bound(int width, int height) {
+  // Radiance .hdr stores 4 bytes (RGBE) a pixel, the 8-bit previews 3.
+  return with_headroom(static_cast<uintmax_t>(width) * static_cast<uintmax_t>(height) * 4);
 }
 
 void check_destination(const fs::path& file, uintmax_t bytes) {

@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "scene/film.h"
+#include "scene/tone_map.h"
 
 namespace snee {
 
@@ -23,13 +24,30 @@ std::filesystem::path partial_path(const std::filesystem::path& file);
 void replace_file(const std::filesystem::path& file,
                   const std::function<void(const std::string&)>& write);
 
-// The EXR, then its PNG preview, each with replace_file.
-void write_images(const Film& film, const std::filesystem::path& exr,
-                  const std::filesystem::path& png);
+// The files of a render: the EXR (always: it alone keeps the variance and the settings) and
+// one view of it, whose extension picks its kind: .png, .jpg or .jpeg an 8-bit preview through
+// `tone`, .hdr the linear mean radiance.
+struct OutputImages {
+  std::filesystem::path exr;
+  std::filesystem::path view;
+  ToneMap tone;
+  ExrAttributes attributes;  // written into the EXR after the film's own metadata
+};
+
+// The extensions `-o` accepts, in the words of its error message.
+bool is_output_extension(const std::filesystem::path& extension);
+inline constexpr const char* kOutputExtensions = ".exr, .png, .jpg, .jpeg or .hdr";
+
+// `-o FILE`: FILE.exr gets FILE.png beside it as its preview, any other accepted FILE gets the
+// EXR beside it with the same stem.
+OutputImages output_images(const std::filesystem::path& requested);
+
+// The EXR, then its view, each with replace_file.
+void write_images(const Film& film, const OutputImages& images);
 
 // Upper bounds of the files write_images makes for a width x height film (before compression).
 uintmax_t exr_bytes_bound(int width, int height);
-uintmax_t png_bytes_bound(int width, int height);
+uintmax_t view_bytes_bound(int width, int height);
 
 // Makes sure `file` can be written later: creates its directory, checks that its name fits
 // the file system and that no directory is in the way, creates and removes its partial file,

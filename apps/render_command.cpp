@@ -12,6 +12,7 @@
 #include "apps/option_checks.h"
 #include "apps/output_files.h"
 #include "apps/progress_bar.h"
+#include "apps/render_settings.h"
 #include "apps/resolution.h"
 #include "apps/stats_json.h"
 #include "scene/scene_loader.h"
@@ -63,11 +64,15 @@ RenderCommand::RenderCommand(CLI::App& parent)
                "pt (path tracing), snee (pt + subdivision NEE) or sla (straight-line shadow rays: "
                "biased, for comparison) [default: the scene's, else pt]")
       ->check(CLI::IsMember({"pt", "snee", "sla"}));
-  c.add_option("-o,--output", output_, "Output EXR; the PNG preview goes beside it")
+  c.add_option("-o,--output", output_,
+               "Output image: FILE.exr gets its preview FILE.png beside it; FILE.png, .jpg, "
+               ".jpeg (tone-mapped 8-bit preview) or .hdr (linear radiance) gets FILE.exr, "
+               "which alone keeps the variance and the settings, beside it")
       ->default_str("out/<scene-name>.exr")
       ->check([](const std::string& path) {
-        return fs::path(path).extension() == ".exr" ? std::string()
-                                                    : "the output must end in .exr: " + path;
+        return is_output_extension(fs::path(path).extension())
+                   ? std::string()
+                   : std::string("the output must end in ") + kOutputExtensions + ": " + path;
       });
   c.add_option("--stats", stats_, "Also write render statistics as JSON to this file");
   c.add_option("--resolution", resolution_,
@@ -111,6 +116,7 @@ RenderCommand::RenderCommand(CLI::App& parent)
                        : "expected a size such as 4G, 512M or 1000000, got '" + text + "'";
           },
           "SIZE"));
+  add_image_options(c);
 
   const std::string snee = "SNEE (docs/snee-implementation.md)";
   c.add_option("--snee-probe", snee_probe_,
@@ -152,6 +158,31 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->group(snee);
 }
 
+void RenderCommand::add_image_options(CLI::App& c) {
+  const std::string group = "Output images (docs/output-images.md)";
+  c.add_option("--exposure", exposure_ev_,
+               "Preview exposure in stops: each +1 doubles the radiance before the tone curve "
+               "(PNG/JPEG only; the EXR and .hdr stay linear)")
+      ->check(finite_in_range(-64, 64))
+      ->capture_default_str()
+      ->group(group);
+  c.add_option("--tone-curve", tone_curve_,
+               "Preview tone curve: filmic (ACES fit, highlights roll off) or clamp (clip at 1)")
+      ->check(CLI::IsMember({"filmic", "clamp"}))
+      ->capture_default_str()
+      ->group(group);
+  c.add_option("--clamp", options_.sample_clamp,
+               "BIASED: clip each sample's RGB radiance to VALUE before averaging (removes "
+               "fireflies and energy with them; recorded as snee:sample_clamp in the EXR) "
+               "[default: off]")
+      ->check(finite_positive())
+      ->group(group);
+}
+
+ToneMap RenderCommand::preview_tone() const {
+  return {exposure_ev_, tone_curve_ == "clamp" ? ToneCurve::kClamp : ToneCurve::kFilmic};
+}
+
 int RenderCommand::run(const RenderDistribution& distribution) const {
   LoadedScene loaded = load_scene(scene_, options_.memory_budget);
   for (const std::string& warning : loaded.warnings)
@@ -184,14 +215,18 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
 
   const std::string name = output_name(scene, scene_);
   scene.name = name;  // render() stamps it on the film and on every checkpoint
-  const fs::path exr = output_.empty() ? fs::path("out") / (name + ".exr") : fs::path(output_);
-  const fs::path png = fs::path(exr).replace_extension(".png");
+  OutputImages images =
+      output_images(output_.empty() ? fs::path("out") / (name + ".exr") : fs::path(output_));
+  images.tone = preview_tone();
+  images.attributes = render_settings_attributes(scene_, loaded, options, images.tone);
+  const fs::path& exr = images.exr;
+  const fs::path& png = images.view;
   // Only the process that writes checks, before any sampling, so a bad destination costs
   // nothing; each check leaves the directory it needs in place.
   const bool writes = distribution.shard == 0;
   if (writes) {
     const int w = scene.camera.width, h = scene.camera.height;
-    check_destination(exr, exr_bytes_bound(w, h) + png_bytes_bound(w, h));
+    check_destination(exr, exr_bytes_bound(w, h) + view_bytes_bound(w, h));
     check_destination(png, 0);
     if (!stats_.empty()) check_destination(stats_, 0);
   }
@@ -205,7 +240,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
     // on and the next checkpoint tries again; only the final write decides the exit code.
     hooks.checkpoint = [&](const Film& film) {
       try {
-        write_images(film, exr, png);
+        write_images(film, images);
       } catch (const std::exception& e) {
         std::fprintf(stderr, "warning: checkpoint not written, rendering goes on: %s\n", e.what());
       }
@@ -232,7 +267,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   if (distribution.join && !distribution.join(result, exit_status)) return exit_status;
 
   warn_about_nonfinite_samples(result.stats);
-  write_images(result.film, exr, png);
+  write_images(result.film, images);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
   if (result.complete) {
     std::printf("rendered %s: %s, %dx%d, %d spp, %.2f s, %.1f Mrays/s\n", name.c_str(),

@@ -1,5 +1,6 @@
 // `snee render`: loads a scene, renders it with the scene's settings overridden by the command
-// line, and writes the EXR, a PNG preview beside it and optionally a statistics JSON. With
+// line, and writes the EXR with a view of it (a PNG preview, or the -o file's format) and
+// optionally a statistics JSON. With
 // --checkpoint it also writes the image so far while rendering; on Ctrl-C (SIGINT) or SIGTERM
 // it stops, writes the image so far and exits with 128 + the signal number.
 #pragma once
@@ -9,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "scene/tone_map.h"
 #include "scheduler/render.h"
 
 namespace snee {
@@ -49,6 +51,11 @@ class RenderCommand {
   std::string snee_probe_ = "uniform";
   std::string snee_heuristic_ = "balance";
   std::string snee_strategies_ = "tb,bt,ub,ul";
+  // Output images (apps/output_files.h, docs/output-images.md).
+  void add_image_options(CLI::App& c);
+  ToneMap preview_tone() const;
+  float exposure_ev_ = 0;
+  std::string tone_curve_ = "filmic";
 };
 
 }  // namespace snee

@@ -105,8 +105,11 @@ int ScaleCommand::run() const {
     const double efficiency = speedup / threads[i];
     const double work_efficiency =
         s.sampling_cpu_seconds > 0 ? base_cpu_seconds / s.sampling_cpu_seconds : 0;
-    const double cpu_share =
-        s.sampling_seconds > 0 ? s.sampling_cpu_seconds / (s.sampling_seconds * threads[i]) : 0;
+    const MeasurementCheck check =
+        check_measurement(s.sampling_seconds, s.sampling_cpu_seconds, threads[i]);
+    const double cpu_share = check.cpu_share;
+    for (const std::string& warning : check.warnings)
+      std::fprintf(stderr, "warning: %d thread(s): %s\n", threads[i], warning.c_str());
     const double paths_per_second =
         s.sampling_seconds > 0 ? static_cast<double>(s.paths) / s.sampling_seconds : 0;
     points.push_back({threads[i], speedup, efficiency, work_efficiency});
@@ -121,6 +124,7 @@ int ScaleCommand::run() const {
          {"cpu_seconds", s.sampling_cpu_seconds},
          {"repeat_cpu_seconds", m.sampling_cpu_seconds()},
          {"cpu_share", cpu_share},
+         {"warnings", check.warnings},
          {"paths", s.paths},
          {"paths_per_second", paths_per_second},
          {"mrays_per_second", s.sampling_seconds > 0

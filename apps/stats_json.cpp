@@ -68,14 +68,17 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"path_state_bytes_per_slot", stats.path_state_bytes_per_slot},
       {"queue_occupancy", stats.queue_occupancy},
       {"simd", simd_lanes_json(stats)},
-      {"snee_options",
-       {{"probe", options.snee.probe == ProbeDirections::kPhaseFunction ? "phase" : "uniform"},
-        {"distance_mix", options.snee.c_exponential},
-        {"joint_mix", options.snee.c_joint},
-        {"heuristic", options.snee.heuristic == MisHeuristic::kPower ? "power" : "balance"},
-        {"strategies", strategy_set_name(options.snee.enabled)}}},
+      {"snee_options", snee_options_json(options.snee)},
       {"snee", snee},
   };
+}
+
+nlohmann::ordered_json snee_options_json(const SneeOptions& snee) {
+  return {{"probe", snee.probe == ProbeDirections::kPhaseFunction ? "phase" : "uniform"},
+          {"distance_mix", snee.c_exponential},
+          {"joint_mix", snee.c_joint},
+          {"heuristic", snee.heuristic == MisHeuristic::kPower ? "power" : "balance"},
+          {"strategies", strategy_set_name(snee.enabled)}};
 }
 
 void write_json_file(const nlohmann::ordered_json& json, const std::string& path) {

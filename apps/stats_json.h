@@ -21,6 +21,9 @@ nlohmann::ordered_json simd_lanes_json(const RenderStats& stats);
 
 nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
                                   const RenderResult& result);
+// The SNEE options as `--stats` and the EXR's snee:render_options write them.
+nlohmann::ordered_json snee_options_json(const SneeOptions& snee);
+
 // Throws std::runtime_error naming the file if it cannot be written.
 void write_json_file(const nlohmann::ordered_json& json, const std::string& path);
 

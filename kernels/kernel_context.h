@@ -95,6 +95,9 @@ struct KernelContext {
   int max_depth;
   SneeOptions snee;
   bool has_null_surfaces = false;
+  // Each sample's RGB is clipped to this before it reaches the film (0: never). Biased: it
+  // trades the energy of rare bright paths (fireflies) for less variance.
+  float sample_clamp = 0.0f;
   float epsilon;
   // Pinhole camera basis: direction = forward + (2x-1) right + (1-2y) up for x,y in [0,1).
   Vec3 camera_origin, camera_forward, camera_right, camera_up;

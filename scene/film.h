@@ -4,9 +4,11 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/math.h"
+#include "scene/tone_map.h"
 
 namespace snee {
 
@@ -32,11 +34,17 @@ struct Film {
   const Rgb& at(int x, int y) const { return mean[static_cast<size_t>(y) * width + x]; }
 };
 
+// Further string attributes of an EXR (name, value), e.g. the settings a render was made with.
+using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
+
 // Writes a linear float EXR with channels R,G,B and variance.R/G/B and the metadata as
-// "snee:*" attributes. Throws std::runtime_error naming the file on failure.
-void write_exr(const Film& film, const std::string& path);
-// Writes an 8-bit sRGB preview (clamped, exposure 1); format from the extension (PNG, JPEG...).
-void write_preview(const Film& film, const std::string& path);
+// "snee:*" attributes, then `extra`. Throws std::runtime_error naming the file on failure.
+void write_exr(const Film& film, const std::string& path, const ExrAttributes& extra = {});
+// Writes an 8-bit preview through `tone` (default: clamped, exposure 0, sRGB encoded); format
+// from the extension (PNG, JPEG...).
+void write_preview(const Film& film, const std::string& path, const ToneMap& tone = {});
+// Writes the mean radiance as linear float RGB (Radiance .hdr): no variance, no metadata.
+void write_hdr(const Film& film, const std::string& path);
 // Reads an EXR written by write_exr (variance channels optional). Throws on failure.
 Film read_exr(const std::string& path);
 

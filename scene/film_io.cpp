@@ -55,18 +55,9 @@ void check_film(const Film& film, const std::string& path) {
     fail("cannot write image", path, "film has no pixels or inconsistent size");
 }
 
-// The sRGB transfer function (IEC 61966-2-1), then clamping to [0, 1]; NaN shows as black.
-uint8_t srgb8(float linear) {
-  if (!(linear > 0.0f)) return 0;
-  if (linear >= 1.0f) return 255;
-  const float encoded =
-      linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-  return static_cast<uint8_t>(std::lround(encoded * 255.0f));
-}
-
 }  // namespace
 
-void write_exr(const Film& film, const std::string& path) {
+void write_exr(const Film& film, const std::string& path, const ExrAttributes& extra) {
   check_film(film, path);
   const bool has_variance = film.variance_of_mean.size() == film.mean.size();
   const int nchannels = has_variance ? 6 : 3;
@@ -82,6 +73,7 @@ void write_exr(const Film& film, const std::string& path) {
   spec.attribute("snee:render_seconds", OIIO::TypeDesc::DOUBLE, &film.meta.render_seconds);
   spec.attribute("snee:scene", film.meta.scene);
   spec.attribute("snee:nonfinite_samples", std::to_string(film.meta.nonfinite_samples));
+  for (const auto& [name, value] : extra) spec.attribute(name, value);
 
   std::vector<float> pixels;
   pixels.reserve(pixel_count(film) * nchannels);
@@ -94,16 +86,29 @@ void write_exr(const Film& film, const std::string& path) {
   write_pixels(*out, spec, path, OIIO::TypeDesc::FLOAT, pixels.data());
 }
 
-void write_preview(const Film& film, const std::string& path) {
+void write_preview(const Film& film, const std::string& path, const ToneMap& tone) {
   check_film(film, path);
   OIIO::ImageSpec spec(film.width, film.height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("Software", "snee " SNEE_VERSION);
   std::vector<uint8_t> pixels;
   pixels.reserve(pixel_count(film) * 3);
   for (const Rgb& rgb : film.mean)
-    for (int c = 0; c < 3; ++c) pixels.push_back(srgb8(rgb[c]));
+    for (int c = 0; c < 3; ++c)
+      pixels.push_back(static_cast<uint8_t>(std::lround(tone.encode(rgb[c]) * 255.0f)));
   auto out = create_output(path);
   write_pixels(*out, spec, path, OIIO::TypeDesc::UINT8, pixels.data());
+}
+
+void write_hdr(const Film& film, const std::string& path) {
+  check_film(film, path);
+  OIIO::ImageSpec spec(film.width, film.height, 3, OIIO::TypeDesc::FLOAT);
+  spec.attribute("Software", "snee " SNEE_VERSION);
+  std::vector<float> pixels;
+  pixels.reserve(pixel_count(film) * 3);
+  for (const Rgb& rgb : film.mean)
+    for (int c = 0; c < 3; ++c) pixels.push_back(rgb[c]);
+  auto out = create_output(path);
+  write_pixels(*out, spec, path, OIIO::TypeDesc::FLOAT, pixels.data());
 }
 
 Film read_exr(const std::string& path) {

@@ -153,8 +153,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
 
   const EmbreeScene embree(scene);
   const LightTable lights(scene);
-  const KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
-                          options.snee);
+  KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
+                    options.snee);
+  ctx.sample_clamp = options.sample_clamp;
   const auto sampling_start = std::chrono::steady_clock::now();
   const double sampling_cpu_start = cpu_seconds();
 

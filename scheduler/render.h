@@ -59,6 +59,9 @@ struct RenderOptions {
   int shard = 0;
   int shard_count = 1;
   SneeOptions snee;  // open choices of docs/method.md section 7 (integrator "snee")
+  // Clip each sample's RGB radiance to this before it is averaged (0: off). Biased: the image
+  // no longer converges to the true one; `snee render --clamp`.
+  float sample_clamp = 0.0f;
   // The film, sample buffers and workspaces together must fit, or render() refuses before
   // allocating any of them.
   MemoryBudget memory_budget;

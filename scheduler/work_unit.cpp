@@ -91,6 +91,8 @@ void retire(const KernelContext& ctx, UnitWorkspace& ws) {
       ++ws.counters.nonfinite_samples;
       l = Rgb(0.0f);
     }
+    if (ctx.sample_clamp > 0.0f)
+      for (int c = 0; c < 3; ++c) l[c] = std::min(l[c], ctx.sample_clamp);
     const uint32_t pixel = state.pixel[s];
     const int x = static_cast<int>(pixel % static_cast<uint32_t>(ctx.width)) - unit.x0;
     const int y = static_cast<int>(pixel / static_cast<uint32_t>(ctx.width)) - unit.y0;

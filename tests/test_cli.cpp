@@ -105,7 +105,7 @@ TEST_F(CliTest, BadValuesAreErrors) {
   for (const char* args :
        {"render --resolution 0x5", "render --resolution 16", "render --resolution 16x-2",
         "render --spp 0", "render --spp many", "render --threads -1", "render --integrator bdpt",
-        "render -o image.png", "render --tile-size 0"}) {
+        "render -o image.tif", "render --tile-size 0"}) {
     const Outcome run = snee(args);
     EXPECT_NE(run.exit_code, 0) << args << "\n" << run.output;
     EXPECT_TRUE(contains(run.output, "error")) << args << "\n" << run.output;

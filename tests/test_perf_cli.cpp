@@ -110,6 +110,57 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
   EXPECT_EQ(b["memory_vs_spp"]["runs"].size(), 2u);
 }
 
+// A 16x16, 1 spp run samples for milliseconds, far under a second: whatever the machine, the
+// figures must say they cannot be trusted, in the JSON and on the terminal. Every stage share
+// and the rest are never negative: a rest the sampled stage times overrun is null, with the
+// overrun given instead.
+TEST_F(PerfCli, ShortBenchRunsCarryTheirWarning) {
+  ASSERT_EQ(snee("bench --quick --only sphere-pt --threads 1 --json w.json"), 0) << output_;
+  EXPECT_NE(output_.find("under 1 s"), std::string::npos) << output_;
+  const nlohmann::json b = json("w.json");
+  ASSERT_EQ(b["workloads"].size(), 1u);
+  for (const auto& run : b["workloads"][0]["runs"]) {
+    const std::string where = run["schedule"];
+    ASSERT_TRUE(run.contains("warnings")) << where;
+    bool short_run = false;
+    for (const auto& warning : run["warnings"])
+      short_run |= warning.get<std::string>().find("under 1 s") != std::string::npos;
+    EXPECT_TRUE(short_run) << where << " " << run["warnings"].dump();
+    const double cpu_share = run["cpu_share"];
+    bool cpu_warning = false;
+    for (const auto& warning : run["warnings"])
+      cpu_warning |=
+          warning.get<std::string>().find("of the CPU it asked for") != std::string::npos;
+    EXPECT_EQ(cpu_warning, cpu_share < 0.9) << where << " cpu_share " << cpu_share;
+    for (const auto& [stage, figures] : run["stages"].items())
+      EXPECT_GE(figures["share_of_thread_time"].get<double>(), 0.0) << where << " " << stage;
+    const double excess = run["stage_excess_share_of_thread_time"];
+    EXPECT_GE(excess, 0.0) << where;
+    if (run["other_share_of_thread_time"].is_null()) {
+      EXPECT_GT(excess, 0.0) << where;
+    } else {
+      EXPECT_GE(run["other_share_of_thread_time"].get<double>(), 0.0) << where;
+      EXPECT_EQ(excess, 0.0) << where;
+    }
+  }
+}
+
+TEST_F(PerfCli, ShortScaleRunsCarryTheirWarning) {
+  ASSERT_EQ(snee("scale builtin:sphere-cone-r0.04 --threads 1 --repeats 1 --resolution 8x8 "
+                 "--spp 1 --json w.json"),
+            0)
+      << output_;
+  EXPECT_NE(output_.find("warning: 1 thread(s): ran for"), std::string::npos) << output_;
+  const nlohmann::json s = json("w.json");
+  ASSERT_EQ(s["results"].size(), 1u);
+  const auto& warnings = s["results"][0]["warnings"];
+  ASSERT_FALSE(warnings.empty());
+  bool short_run = false;
+  for (const auto& warning : warnings)
+    short_run |= warning.get<std::string>().find("under 1 s") != std::string::npos;
+  EXPECT_TRUE(short_run) << warnings.dump();
+}
+
 TEST_F(PerfCli, BenchRejectsBadThreadLists) {
   EXPECT_NE(snee("bench --quick --threads 0"), 0) << output_;
   EXPECT_NE(snee("bench --quick --threads 1,,2"), 0) << output_;
