@@ -97,7 +97,7 @@ BenchCommand::BenchCommand(CLI::App& parent)
       ->capture_default_str();
   c.add_option("--samples-per-unit", samples_per_unit_,
                "Sample indices per pixel in one work unit (a tile times this many samples)")
-      ->check(CLI::PositiveNumber)
+      ->check(integer_in_range(1, kMaxSamplesPerUnit))
       ->capture_default_str();
   c.add_option("--queue-capacity", queue_capacity_,
                "Path slots per work unit of the local and global schedules")

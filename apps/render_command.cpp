@@ -86,11 +86,11 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->check(integer_in_range(kMinQueueCapacity, kMaxQueueCapacity))
       ->capture_default_str();
   c.add_option("--tile-size", options_.tile_size, "Work-unit tile edge in pixels")
-      ->check(integer_at_least(1))
+      ->check(integer_in_range(1, kMaxTileSize))
       ->capture_default_str();
   c.add_option("--samples-per-unit", options_.samples_per_unit,
                "Sample indices per pixel in one work unit (a tile times this many samples)")
-      ->check(integer_at_least(1))
+      ->check(integer_in_range(1, kMaxSamplesPerUnit))
       ->capture_default_str();
   c.add_option("--schedule", options_.schedule,
                "megakernel (one path at a time, the comparison twin), local (wavefront per work "

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "scene/exr_header_check.h"
 #include "scene/input_file.h"
 #include "scene/scene_error.h"
 
@@ -30,6 +31,8 @@ EnvImage read_env_image(const std::string& path, const MemoryBudget& budget) {
   // OpenImageIO reads the bytes from memory, so it sees exactly the file that was checked to
   // be a regular one and never opens a FIFO or a device itself.
   const std::string bytes = read_input_file(path, "environment image", budget);
+  // OpenEXR would allocate what an attribute's size claims before reading it.
+  check_exr_header(bytes, path);
   OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
   auto input = OIIO::ImageInput::open(path, nullptr, &memory);
   if (!input) {
@@ -38,6 +41,13 @@ EnvImage read_env_image(const std::string& path, const MemoryBudget& budget) {
   const OIIO::ImageSpec spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
     throw SceneError(path + ": the environment image is empty");
+  }
+  // read_image cannot read deep pixels into a flat buffer and would fail with a message about
+  // its own internals.
+  if (spec.deep) {
+    throw SceneError(path +
+                     ": the environment image is a deep image (a list of samples per pixel; "
+                     "expected a flat image)");
   }
   // read_image would write every slice of a volume into a buffer sized for one.
   if (spec.depth != 1) {

@@ -64,8 +64,11 @@ void validate(const Scene& scene, const RenderOptions& o) {
   if (o.queue_capacity < kMinQueueCapacity || o.queue_capacity > kMaxQueueCapacity)
     throw std::invalid_argument("queue capacity must be from " + std::to_string(kMinQueueCapacity) +
                                 " to " + std::to_string(kMaxQueueCapacity));
-  if (o.tile_size < 1) throw std::invalid_argument("tile size must be at least 1");
-  if (o.samples_per_unit < 1) throw std::invalid_argument("samples per unit must be at least 1");
+  if (o.tile_size < 1 || o.tile_size > kMaxTileSize)
+    throw std::invalid_argument("tile size must be from 1 to " + std::to_string(kMaxTileSize));
+  if (o.samples_per_unit < 1 || o.samples_per_unit > kMaxSamplesPerUnit)
+    throw std::invalid_argument("samples per unit must be from 1 to " +
+                                std::to_string(kMaxSamplesPerUnit));
   if (o.shard_count < 1 || o.shard < 0 || o.shard >= o.shard_count)
     throw std::invalid_argument("shard must be from 0 to shard count - 1");
   if (scene.camera.width < 1 || scene.camera.height < 1) throw std::invalid_argument("empty image");

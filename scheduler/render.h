@@ -36,6 +36,14 @@ const char* stage_name(Stage s);
 inline constexpr int kMinQueueCapacity = 16;  // below it a SIMD batch is mostly empty lanes
 // 65536 slots of path state are ~12 MiB per thread, far more than a unit's paths need.
 inline constexpr int kMaxQueueCapacity = 1 << 16;
+// A tile is at most the largest image (kMaxImageEdge, scene/scene.h): a larger one is the same
+// single tile, and within the bound a tile's x + tile_size never leaves int.
+inline constexpr int kMaxTileSize = kMaxImageEdge;
+// Sample indices per pixel in one unit. A unit is the grain of scheduling, of the sample buffer
+// and of checkpoints; within this bound sample_begin + samples_per_unit stays below 2^32 for
+// any spp (at most 2^31 - 1) in the 32 bits a unit keeps per sample index, and a unit of the
+// largest tile holds at most 2^30 x 2^16 samples, which the memory budget then judges.
+inline constexpr int kMaxSamplesPerUnit = 1 << 16;
 // More threads than hardware threads only add switching to a CPU-bound render, while every
 // thread costs a workspace and a share of the sample buffers (~1 MiB), and each must be
 // scheduled once to notice a stop; this many per hardware thread leaves room for

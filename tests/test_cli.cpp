@@ -254,6 +254,33 @@ TEST_F(CliTest, QueueCapacityLimitsAreRendersLimits) {
   }
 }
 
+// A tile beyond the largest image and more sample indices per unit than kMaxSamplesPerUnit
+// used to pass the command line (render() took any positive value).
+TEST_F(CliTest, TileSizeAndSamplesPerUnitLimitsAreRendersLimits) {
+  for (const char* tile : {"0", "32769", "2147483647"}) {
+    const Outcome run = snee(std::string("render --tile-size ") + tile);
+    EXPECT_NE(run.exit_code, 0) << tile << "\n" << run.output;
+    EXPECT_TRUE(contains(run.output, "--tile-size: expected an integer from 1 to 32768, got '" +
+                                         std::string(tile) + "'"))
+        << run.output;
+  }
+  for (const char* command : {"render", "bench"}) {
+    for (const char* samples : {"0", "65537"}) {
+      const Outcome run = snee(std::string(command) + " --samples-per-unit " + samples);
+      EXPECT_NE(run.exit_code, 0) << command << " " << samples << "\n" << run.output;
+      EXPECT_TRUE(contains(run.output,
+                           "--samples-per-unit: expected an integer from 1 to 65536, "
+                           "got '" +
+                               std::string(samples) + "'"))
+          << run.output;
+    }
+  }
+  const Outcome run = snee(
+      "render builtin:furnace-sphere --resolution 8x8 --spp 2 --quiet --tile-size 32768 "
+      "--samples-per-unit 65536");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+}
+
 // A long checkpointed render whose output directory, once the first checkpoint is there, is
 // replaced by a regular file, so the next checkpoint fails (and reports it).
 std::unique_ptr<test::BackgroundCommand> render_into_a_vanished_directory(const CliTest& t) {

@@ -1,7 +1,9 @@
 // Environment images: channel handling and colour decoding for each kind of file OIIO writes.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 
+#include <OpenImageIO/deepdata.h>
 #include <OpenImageIO/imageio.h>
 
 #include <cerrno>
@@ -15,6 +17,7 @@
 
 #include "scene/env_image_io.h"
 #include "scene/scene_error.h"
+#include "tests/support/exr_reproducers.h"
 #include "tests/support/test_directory.h"
 
 namespace snee {
@@ -42,6 +45,12 @@ class EnvImageIoTest : public ::testing::Test {
 
   fs::path dir_;
 };
+
+long peak_rss_kib() {
+  struct rusage usage {};
+  ::getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;
+}
 
 std::string error_of(const std::string& path, const MemoryBudget& budget = {}) {
   try {
@@ -149,6 +158,60 @@ TEST_F(EnvImageIoTest, OnlyRegularFilesAreRead) {
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
   EXPECT_NE(error_of(fifo).find(fifo + ": cannot read environment image: it is a FIFO"),
             std::string::npos);
+}
+
+// The 379-byte fuzzer reproducer made OpenEXR allocate about 1.4 GB for one string attribute
+// and read it for minutes. It is refused from its header walk before OpenImageIO allocates
+// anything; the peak resident size grows by less than the file could ever justify.
+TEST_F(EnvImageIoTest, ExrAttributeSizeBeyondTheFileIsRefusedBeforeAllocating) {
+  const std::string path = (dir_ / "huge-string-attribute.exr").string();
+  std::ofstream(path, std::ios::binary) << test::exr_huge_string_attribute();
+  const long peak_before_kib = peak_rss_kib();
+  EXPECT_EQ(error_of(path), path +
+                                ": EXR header: attribute 'capDate' (string) declares "
+                                "1467572588 bytes, but only 352 bytes follow in the file");
+  EXPECT_LT(peak_rss_kib() - peak_before_kib, 64 * 1024);
+}
+
+// Images snee cannot use as a lat-long map are refused by name, not read into a wrong layout.
+// OpenImageIO 2.4 writes no volume that reads back as one (its TIFF volumes read back flat),
+// so the volume is a hand-made 4x4x3 DDS volume texture (the DDS reader keeps the depth).
+TEST_F(EnvImageIoTest, VolumesAndDeepImagesAreRefused) {
+  std::string dds = "DDS ";
+  const auto put = [&dds](std::initializer_list<uint32_t> words) {
+    for (const uint32_t w : words) {
+      for (int i = 0; i < 4; ++i) dds.push_back(static_cast<char>(w >> (8 * i) & 0xff));
+    }
+  };
+  constexpr uint32_t kCapsHeightWidthPixelFormatDepth = 0x1 | 0x2 | 0x4 | 0x1000 | 0x800000;
+  put({124, kCapsHeightWidthPixelFormatDepth, 4, 4, 16, 3, 0});  // size, flags, h, w, pitch, d
+  dds.append(44, '\0');                                          // reserved
+  put({32, 0x40, 0, 32, 0xff0000, 0xff00, 0xff, 0});  // pixel format: 32-bit RGB with masks
+  put({0x1008, 0x200000, 0, 0, 0});                   // caps: complex texture; caps2: volume
+  dds.append(4 * 4 * 3 * 4, '\x80');
+  const std::string volume = (dir_ / "volume.dds").string();
+  std::ofstream(volume, std::ios::binary) << dds;
+  EXPECT_EQ(error_of(volume),
+            volume + ": the environment image is a volume of 3 slices (expected a flat image)");
+
+  const std::string deep = (dir_ / "deep.exr").string();
+  auto out = OIIO::ImageOutput::create(deep);
+  ASSERT_TRUE(out) << OIIO::geterror();
+  OIIO::ImageSpec spec(2, 2, 4, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B", "Z"};
+  spec.z_channel = 3;
+  spec.deep = true;
+  ASSERT_TRUE(out->open(deep, spec)) << out->geterror();
+  OIIO::DeepData samples(spec);
+  for (int64_t pixel = 0; pixel < 4; ++pixel) {
+    samples.set_samples(pixel, 1);
+    for (int c = 0; c < 4; ++c) samples.set_deep_value(pixel, c, 0, 1.0f);
+  }
+  ASSERT_TRUE(out->write_deep_image(samples)) << out->geterror();
+  out->close();
+  EXPECT_EQ(error_of(deep), deep +
+                                ": the environment image is a deep image (a list of samples "
+                                "per pixel; expected a flat image)");
 }
 
 }  // namespace

@@ -136,6 +136,22 @@ TEST(RenderHooks, ThreadsAndQueueCapacityAreBounded) {
   }
 }
 
+TEST(RenderHooks, TileSizeAndSamplesPerUnitAreBounded) {
+  const Scene scene = small_scene();
+  RenderOptions options = small_options();
+  for (const int tile : {0, kMaxTileSize + 1}) {
+    options.tile_size = tile;
+    EXPECT_THROW(render(scene, options), std::invalid_argument) << tile;
+  }
+  options.tile_size = kMaxTileSize;
+  for (const int samples : {0, kMaxSamplesPerUnit + 1}) {
+    options.samples_per_unit = samples;
+    EXPECT_THROW(render(scene, options), std::invalid_argument) << samples;
+  }
+  options.samples_per_unit = kMaxSamplesPerUnit;
+  EXPECT_TRUE(render(scene, options).complete);
+}
+
 TEST(RenderHooks, CheckpointsAreConsistentAndLeaveTheImageUnchanged) {
   const Scene scene = small_scene();
   const std::vector<Film> complete = complete_films(scene);
