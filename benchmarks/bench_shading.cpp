@@ -7,8 +7,6 @@
 #include "kernels/bsdf/fresnel.h"
 #include "kernels/medium/henyey_greenstein.h"
 #include "kernels/simd/dielectric_batch.h"
-#include "kernels/simd/fresnel_batch.h"
-#include "kernels/simd/hg_phase_batch.h"
 #include "kernels/simd/hg_sample_batch.h"
 
 namespace snee {
@@ -77,7 +75,7 @@ void BM_HgPhaseSimd(benchmark::State& state) {
   std::vector<float> out(bench::kItems);
   for (auto _ : state) {
     for (size_t i = 0; i < bench::kItems; i += simd::kLanes)
-      simd::hg_phase(FloatBatch::load_unaligned(mu.data() + i), FloatBatch(kG))
+      hg_phase(FloatBatch::load_unaligned(mu.data() + i), FloatBatch(kG))
           .store_unaligned(out.data() + i);
     benchmark::ClobberMemory();
   }
@@ -105,8 +103,8 @@ void BM_FresnelSimd(benchmark::State& state) {
   for (size_t i = 0; i < bench::kItems; ++i) eta[i] = kEta[i & 1];
   for (auto _ : state) {
     for (size_t i = 0; i < bench::kItems; i += simd::kLanes)
-      simd::fresnel_dielectric(FloatBatch::load_unaligned(c.data() + i),
-                               FloatBatch::load_unaligned(eta.data() + i))
+      fresnel_dielectric(FloatBatch::load_unaligned(c.data() + i),
+                         FloatBatch::load_unaligned(eta.data() + i))
           .store_unaligned(out.data() + i);
     benchmark::ClobberMemory();
   }

@@ -14,8 +14,6 @@
 #include "kernels/sampling.h"
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/frame_batch.h"
-#include "kernels/simd/fresnel_batch.h"
-#include "kernels/simd/hg_phase_batch.h"
 #include "kernels/simd/hg_sample_batch.h"
 #include "kernels/simd/sampling_batch.h"
 #include "tests/support/lanes.h"
@@ -40,7 +38,7 @@ TEST(ShadingBatch, FresnelMatchesScalarBitwise) {
       c.v[i] = trial < 25 ? edge_cos[(trial + i) % 5] : cosine(engine);
       eta.v[i] = trial < 25 ? edge_eta[trial / 5] : index(engine);
     }
-    const Lanes got = to_lanes(simd::fresnel_dielectric(c.batch(), eta.batch()));
+    const Lanes got = to_lanes(fresnel_dielectric(c.batch(), eta.batch()));
     for (size_t i = 0; i < kLanes; ++i)
       ASSERT_EQ(std::bit_cast<uint32_t>(got.v[i]),
                 std::bit_cast<uint32_t>(fresnel_dielectric(c.v[i], eta.v[i])))
@@ -57,7 +55,7 @@ TEST(ShadingBatch, HenyeyGreensteinMatchesScalarBitwise) {
       mu.v[i] = trial < 10 ? (i % 2 ? 1.0f : -1.0f) : cosine(engine);
       g.v[i] = trial % 7 == 0 ? 0.0f : asymmetry(engine);
     }
-    const Lanes got = to_lanes(simd::hg_phase(mu.batch(), g.batch()));
+    const Lanes got = to_lanes(hg_phase(mu.batch(), g.batch()));
     for (size_t i = 0; i < kLanes; ++i)
       ASSERT_EQ(std::bit_cast<uint32_t>(got.v[i]),
                 std::bit_cast<uint32_t>(hg_phase(mu.v[i], g.v[i])))

@@ -1,23 +1,33 @@
 // Unpolarised Fresnel reflectance and Snell refraction for a dielectric interface.
 #pragma once
 
+#include "kernels/lane_math.h"
 #include "scene/math.h"
 
 namespace snee {
 
 // Reflectance for light arriving with cosine cos_i (> 0) on the side of index eta_i, the other
 // side having index eta_t; eta = eta_t / eta_i. Returns 1 under total internal reflection.
-// The value is the same from both sides of a refraction pair (docs/method.md 4.3).
+// The value is the same from both sides of a refraction pair (docs/method.md 4.3). F is the lane
+// type (kernels/lane_math.h); both outcomes are computed and selected.
+template <class F>
+F fresnel_dielectric(F cos_i, F eta) {
+  using namespace lane;
+  const F one(1.0f);
+  const F c = clamp(cos_i, F(0.0f), one);
+  const F g2 = eta * eta - one + c * c;
+  const F g = sqrt(g2);
+  const F a = (g - c) / (g + c);
+  const F b = (c * (g + c) - one) / (c * (g - c) + one);
+  const F r = F(0.5f) * a * a * (one + b * b);
+  // g2 < 0: total internal reflection. g + c == 0 only at grazing incidence on an index-matched
+  // interface, where the limit is 1.
+  return select(g2 < F(0.0f) || g + c == F(0.0f), one, r);
+}
+
+// The scalar form, which also takes arguments that convert to float.
 inline float fresnel_dielectric(float cos_i, float eta) {
-  const float c = std::clamp(cos_i, 0.0f, 1.0f);
-  const float g2 = eta * eta - 1.0f + c * c;
-  if (g2 < 0.0f) return 1.0f;
-  const float g = std::sqrt(g2);
-  // g + c == 0 only at grazing incidence on an index-matched interface, where the limit is 1.
-  if (g + c == 0.0f) return 1.0f;
-  const float a = (g - c) / (g + c);
-  const float b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
-  return 0.5f * a * a * (1.0f + b * b);
+  return fresnel_dielectric<float>(cos_i, eta);
 }
 
 // Refracts w (pointing away from the surface) through the interface whose normal m lies on w's

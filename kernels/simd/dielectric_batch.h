@@ -10,8 +10,8 @@
 #include <cmath>
 
 #include "kernels/bsdf/dielectric.h"
+#include "kernels/bsdf/fresnel.h"
 #include "kernels/simd/frame_batch.h"
-#include "kernels/simd/fresnel_batch.h"
 
 namespace snee::simd {
 

@@ -5,9 +5,9 @@
 // pdf, which does not depend on the azimuth, bit for bit.
 #pragma once
 
+#include "kernels/lane_math.h"
+#include "kernels/medium/henyey_greenstein.h"
 #include "kernels/simd/frame_batch.h"
-#include "kernels/simd/fresnel_batch.h"
-#include "kernels/simd/hg_phase_batch.h"
 #include "kernels/simd/sampling_batch.h"
 
 namespace snee::simd {
@@ -24,7 +24,7 @@ inline HgSampleBatch hg_sample(const Vec3Batch& w_before, FloatBatch g, FloatBat
   const FloatBatch num =
       s + g * (half * (FloatBatch(3.0f) + s * s) + g * (s + half * g * (s * s - one)));
   const FloatBatch den = one + g * s;
-  const FloatBatch cos_theta = clamp(num / (den * den), FloatBatch(-1.0f), one);
+  const FloatBatch cos_theta = lane::clamp(num / (den * den), FloatBatch(-1.0f), one);
   const FloatBatch sin_theta = safe_sqrt(one - cos_theta * cos_theta);
   const Vec3Batch local = spherical_direction(sin_theta, cos_theta, FloatBatch(2.0f * kPi) * u1);
   return {FrameBatch::from_normal(w_before).to_world(local), hg_phase(cos_theta, g)};

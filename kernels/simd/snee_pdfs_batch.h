@@ -2,8 +2,8 @@
 // bsdf/dielectric.cpp's transmission pdf), so both compute them one way.
 #pragma once
 
+#include "kernels/medium/henyey_greenstein.h"
 #include "kernels/simd/dielectric_batch.h"
-#include "kernels/simd/hg_phase_batch.h"
 #include "kernels/simd/sampling_batch.h"
 #include "kernels/snee/snee_options.h"
 

@@ -19,9 +19,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "kernels/medium/henyey_greenstein.h"
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/free_flight_batch.h"
-#include "kernels/simd/hg_phase_batch.h"
 #include "kernels/simd/snee_pdfs_batch.h"
 #include "kernels/snee/snee_strategies.h"
 
