@@ -9,7 +9,6 @@ namespace snee {
 
 namespace {
 
-constexpr int kRayKinds = static_cast<int>(RayKind::kCount);
 constexpr int kStages = static_cast<int>(Stage::kCount);
 
 // The raw query that bounds each ray kind: camera rays are primary rays; extension rays and
@@ -146,12 +145,9 @@ void print_bench_result(std::FILE* out, const BenchResult& r) {
                  run.measurement.median().all_simd_lanes().occupancy(), f.extend_batch,
                  run.measurement.peak_memory_mib(), ratio[0], ratio[1]);
   }
-  // Short labels in Stage order.
-  static const char* labels[kStages] = {"generate", "extend", "medium", "surface", "escaped",
-                                        "probe",    "subdiv", "shadow", "retire"};
   std::fprintf(out, "   stage time, %% of thread time (threads x wall clock)\n   %-10s %3s",
                "schedule", "thr");
-  for (const char* label : labels) std::fprintf(out, " %8s", label);
+  for (int i = 0; i < kStages; ++i) std::fprintf(out, " %8s", stage_label(static_cast<Stage>(i)));
   std::fprintf(out, " %8s\n", "other");
   for (const BenchRun& run : r.runs) {
     const Figures f = figures(run, r.raw);

@@ -28,7 +28,7 @@ void extend(const KernelContext& ctx, PathState& state, StageQueues& q, KernelCo
       q.escaped.push(s);
     }
   }
-  counters.rays[1] += rays.size() - camera;
+  counters.count_rays(RayKind::kExtension, rays.size() - camera);
   q.extend.clear();
 }
 

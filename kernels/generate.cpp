@@ -7,20 +7,6 @@
 
 namespace snee {
 
-StageQueues::StageQueues(size_t slots)
-    : extend(slots),
-      medium(slots),
-      surface(slots),
-      escaped(slots),
-      probe(slots),
-      subdivide(slots),
-      retire(slots),
-      flights(slots),
-      surfaces(slots),
-      subdivision(slots),
-      rays(slots),
-      shadow(slots * 8) {}
-
 // Batched: each lane computes exactly what random_block and camera_direction compute for its
 // slot (tests/test_camera_batch.cpp), so images do not depend on the batch width.
 void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint32_t* slots,
@@ -60,7 +46,7 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
     counters.count_lanes(BatchedKernel::kCameraRays, count, simd::kLanes);
   }
   for (size_t i = 0; i < n; ++i) q.extend.push(slots[i]);
-  counters.rays[0] += n;
+  counters.count_rays(RayKind::kCamera, n);
   counters.paths += n;
 }
 

@@ -17,6 +17,22 @@ const char* integrator_name(Integrator i) {
   return "?";
 }
 
+const char* ray_kind_name(RayKind k) {
+  switch (k) {
+    case RayKind::kCamera:
+      return "camera";
+    case RayKind::kExtension:
+      return "extension";
+    case RayKind::kShadow:
+      return "shadow";
+    case RayKind::kProbe:
+      return "probe";
+    case RayKind::kCount:
+      break;
+  }
+  return "?";
+}
+
 const char* batched_kernel_name(BatchedKernel k) {
   switch (k) {
     case BatchedKernel::kCameraRays:

@@ -66,14 +66,22 @@ struct LaneCount {
   double occupancy() const { return run > 0 ? static_cast<double>(active) / run : 0.0; }
 };
 
-// Counters kept per thread and summed at the end; indices follow RayKind / SneeCounter.
+// The rays the stages trace, for KernelCounters::rays: camera and extension rays (extend),
+// shadow segments (shadow_connect) and SNEE exit-point probes (snee_probe).
+enum class RayKind : int { kCamera, kExtension, kShadow, kProbe, kCount };
+inline constexpr int kRayKinds = static_cast<int>(RayKind::kCount);
+// "camera", "extension", "shadow", "probe": the keys of the statistics' "rays".
+const char* ray_kind_name(RayKind k);
+
+// Counters kept per thread and summed at the end.
 struct KernelCounters {
-  std::array<uint64_t, 4> rays{};  // camera, extension, shadow, probe
+  std::array<uint64_t, kRayKinds> rays{};  // by RayKind
   uint64_t paths = 0;
   uint64_t nonfinite_samples = 0;
   SneeCounters snee{};
   std::array<LaneCount, kBatchedKernels> lanes{};
   void count(SneeCounter c, uint64_t n = 1) { snee[static_cast<int>(c)] += n; }
+  void count_rays(RayKind k, uint64_t n) { rays[static_cast<int>(k)] += n; }
   void count_lanes(BatchedKernel k, uint64_t active, uint64_t width) {
     lanes[static_cast<int>(k)].active += active;
     lanes[static_cast<int>(k)].run += width;

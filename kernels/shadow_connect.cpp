@@ -42,7 +42,7 @@ void trace_tracked_segments(const KernelContext& ctx, StageQueues& q, KernelCoun
         batch.push(origins[i], segments.direction(i), 0.0f, remaining[i]);
       }
       ctx.embree->intersect(batch.rays(), batch.hits(), static_cast<unsigned>(batch.size()), false);
-      counters.rays[2] += batch.size();
+      counters.count_rays(RayKind::kShadow, batch.size());
       for (size_t k = start; k < end; ++k) {
         const uint32_t i = active[k];
         const size_t b = k - start;
@@ -110,7 +110,7 @@ void trace_visibility_segments(const KernelContext& ctx, StageQueues& q, KernelC
       if (batch.occluded(k - start)) transmittance[index[k]] = Rgb(0.0f);
     }
   }
-  counters.rays[2] += index.size();
+  counters.count_rays(RayKind::kShadow, index.size());
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ void snee_probe(const KernelContext& ctx, PathState& state, StageQueues& q,
           rays.push(state.vertex_j(q.probe[k + l]), {wx[l], wy[l], wz[l]}, 0.0f, kInfinity);
       });
   ctx.embree->intersect(rays.rays(), rays.hits(), static_cast<unsigned>(rays.size()), false);
-  counters.rays[3] += rays.size();
+  counters.count_rays(RayKind::kProbe, rays.size());
   counters.count(SneeCounter::kProbes, rays.size());
 
   for (size_t i = 0; i < rays.size(); ++i) {

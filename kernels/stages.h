@@ -1,6 +1,7 @@
 // The wavefront stage kernels. Each is a plain function over a queue slice: it reads the slots
 // listed in its input queue, updates their path state and appends them to the queues of the
-// stages that come next, in input order. None of them allocates, locks or touches files.
+// stages that come next, in input order. None of them allocates, locks or touches files. Their
+// order, inputs and contracts with each other are the stage table's (stage_table.h).
 #pragma once
 
 #include "kernels/kernel_context.h"
@@ -10,9 +11,22 @@
 
 namespace snee {
 
-// The queues one work unit cycles through.
+// The queues one work unit cycles through: the inputs of the stage table (stage_table.h) and
+// the scratch of the stages' batched passes.
 struct StageQueues {
-  explicit StageQueues(size_t slots);
+  explicit StageQueues(size_t slots)
+      : extend(slots),
+        medium(slots),
+        surface(slots),
+        escaped(slots),
+        probe(slots),
+        subdivide(slots),
+        retire(slots),
+        flights(slots),
+        surfaces(slots),
+        subdivision(slots),
+        rays(slots),
+        shadow(slots * 8) {}
   SlotQueue extend;                // rays to trace
   SlotQueue medium;                // traced rays travelling inside a medium
   SlotQueue surface;               // rays that reached a surface

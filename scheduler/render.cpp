@@ -20,18 +20,6 @@
 
 namespace snee {
 
-const char* ray_kind_name(RayKind k) {
-  static const char* names[] = {"camera", "extension", "shadow", "probe"};
-  return names[static_cast<int>(k)];
-}
-
-const char* stage_name(Stage s) {
-  static const char* names[] = {"generate",      "extend",         "medium_event",
-                                "shade_surface", "shade_escaped",  "snee_probe",
-                                "subdivision",   "shadow_connect", "retire"};
-  return names[static_cast<int>(s)];
-}
-
 uint64_t RenderStats::total_rays() const {
   uint64_t total = 0;
   for (const uint64_t r : rays) total += r;
@@ -214,7 +202,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
     add_workspace_stats(*lane, counters, stats, slot_turns, active_slot_turns);
   stats.queue_occupancy =
       slot_turns > 0 ? static_cast<double>(active_slot_turns) / static_cast<double>(slot_turns) : 0;
-  for (int i = 0; i < static_cast<int>(RayKind::kCount); ++i) stats.rays[i] = counters.rays[i];
+  stats.rays = counters.rays;
   stats.paths = counters.paths;
   stats.nonfinite_samples = counters.nonfinite_samples;
   stats.snee = counters.snee;

@@ -10,27 +10,12 @@
 #include "kernels/kernel_context.h"
 #include "kernels/snee/snee_options.h"
 #include "kernels/snee_counters.h"
+#include "kernels/stage_table.h"
 #include "scene/film.h"
 #include "scene/memory_budget.h"
 #include "scene/scene.h"
 
 namespace snee {
-
-enum class RayKind : int { kCamera, kExtension, kShadow, kProbe, kCount };
-enum class Stage : int {
-  kGenerate,
-  kExtend,
-  kMediumEvent,
-  kShadeSurface,
-  kShadeEscaped,
-  kSneeProbe,
-  kSubdivision,
-  kShadowConnect,
-  kRetire,
-  kCount
-};
-const char* ray_kind_name(RayKind k);
-const char* stage_name(Stage s);
 
 // Limits render() enforces; the command line checks the same constants.
 inline constexpr int kMinQueueCapacity = 16;  // below it a SIMD batch is mostly empty lanes
@@ -102,9 +87,9 @@ struct RenderHooks {
 
 struct RenderStats {
   double seconds = 0;
-  std::array<uint64_t, static_cast<int>(RayKind::kCount)> rays{};
-  std::array<double, static_cast<int>(Stage::kCount)> stage_seconds{};  // summed over threads
-  std::array<uint64_t, static_cast<int>(Stage::kCount)> stage_calls{};  // stage runs on a unit
+  std::array<uint64_t, kRayKinds> rays{};           // by RayKind
+  std::array<double, kStageCount> stage_seconds{};  // by Stage, summed over threads
+  std::array<uint64_t, kStageCount> stage_calls{};  // by Stage: stage runs on a unit
   double sampling_seconds = 0;      // wall clock of running the work units (no scene setup)
   double sampling_cpu_seconds = 0;  // process CPU time over the same interval, all threads
   double queue_occupancy = 0;       // mean over loop turns of the fraction of slots holding a path

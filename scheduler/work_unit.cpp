@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <type_traits>
 
 namespace snee {
 
@@ -46,7 +47,8 @@ void timed(UnitWorkspace& ws, Stage stage, F&& f) {
   ws.stage_seconds[i] += std::max(0.0, seconds - clock_overhead_seconds()) * ws.timing_period;
 }
 
-// Starts new paths in free slots (regeneration) and opens a turn.
+// Opens a turn and starts new paths in free slots (regeneration): the generate row of the stage
+// table, whose input, the unit's samples not yet started while a slot is free, is checked here.
 void generate(const KernelContext& ctx, UnitWorkspace& ws) {
   ws.timing_turn = ws.turns % ws.timing_period == 0;
   ++ws.turns;
@@ -78,6 +80,7 @@ void generate(const KernelContext& ctx, UnitWorkspace& ws) {
   ws.active_slot_turns += ws.active;
 }
 
+// The retire row of the stage table.
 void retire(const KernelContext& ctx, UnitWorkspace& ws) {
   const WorkUnit& unit = *ws.unit;
   const int tile_w = unit.x1 - unit.x0;
@@ -101,6 +104,31 @@ void retire(const KernelContext& ctx, UnitWorkspace& ws) {
   }
   ws.active -= retired.size();
   retired.clear();
+}
+
+// Calls a stage table row's `run` with what it takes: generate and retire the workspace, the
+// kernels its path state, queues and counters (shade_escaped counts nothing).
+template <typename Run>
+void call_stage(Run& run, const KernelContext& ctx, UnitWorkspace& ws) {
+  if constexpr (std::is_invocable_v<Run&, const KernelContext&, UnitWorkspace&>) {
+    run(ctx, ws);
+  } else if constexpr (std::is_invocable_v<Run&, const KernelContext&, PathState&, StageQueues&,
+                                           KernelCounters&>) {
+    run(ctx, ws.state, ws.queues, ws.counters);
+  } else {
+    run(ctx, ws.state, ws.queues);
+  }
+}
+
+// A row whose input queue is empty is skipped (and not counted as a call); generate (no input
+// queue) always runs, since it also opens the turn, and times its own work.
+template <typename Input, typename Run>
+void run_row(const KernelContext& ctx, Stage stage, Input input, Run& run, UnitWorkspace& ws) {
+  if constexpr (std::is_null_pointer_v<Input>) {
+    call_stage(run, ctx, ws);
+  } else if (!(ws.queues.*input).empty()) {
+    timed(ws, stage, [&] { call_stage(run, ctx, ws); });
+  }
 }
 
 }  // namespace
@@ -133,37 +161,13 @@ bool work_unit_finished(const UnitWorkspace& ws) {
 }
 
 void run_stage(const KernelContext& ctx, Stage stage, UnitWorkspace& ws) {
-  PathState& state = ws.state;
-  StageQueues& q = ws.queues;
-  KernelCounters& counters = ws.counters;
   switch (stage) {
-    case Stage::kGenerate:
-      generate(ctx, ws);
-      break;
-    case Stage::kExtend:
-      if (!q.extend.empty()) timed(ws, stage, [&] { extend(ctx, state, q, counters); });
-      break;
-    case Stage::kMediumEvent:
-      if (!q.medium.empty()) timed(ws, stage, [&] { medium_event(ctx, state, q, counters); });
-      break;
-    case Stage::kSneeProbe:
-      if (!q.probe.empty()) timed(ws, stage, [&] { snee_probe(ctx, state, q, counters); });
-      break;
-    case Stage::kSubdivision:
-      if (!q.subdivide.empty()) timed(ws, stage, [&] { subdivision(ctx, state, q, counters); });
-      break;
-    case Stage::kShadeSurface:
-      if (!q.surface.empty()) timed(ws, stage, [&] { shade_surface(ctx, state, q, counters); });
-      break;
-    case Stage::kShadeEscaped:
-      if (!q.escaped.empty()) timed(ws, stage, [&] { shade_escaped(ctx, state, q); });
-      break;
-    case Stage::kShadowConnect:
-      if (!q.shadow.empty()) timed(ws, stage, [&] { shadow_connect(ctx, state, q, counters); });
-      break;
-    case Stage::kRetire:
-      if (!q.retire.empty()) timed(ws, stage, [&] { retire(ctx, ws); });
-      break;
+#define SNEE_RUN_STAGE(id, name, label, report, input, run) \
+  case Stage::id:                                           \
+    run_row(ctx, stage, input, run, ws);                    \
+    break;
+    SNEE_STAGES(SNEE_RUN_STAGE)
+#undef SNEE_RUN_STAGE
     case Stage::kCount:
       break;
   }

@@ -11,6 +11,7 @@
 
 #include "kernels/kernel_context.h"
 #include "kernels/path_state.h"
+#include "kernels/stage_table.h"
 #include "kernels/stages.h"
 #include "scheduler/render.h"
 
@@ -31,14 +32,6 @@ struct WorkUnit {
     return static_cast<size_t>(pixel_count()) * (sample_end - sample_begin);
   }
 };
-
-inline constexpr int kStageCount = static_cast<int>(Stage::kCount);
-
-// One turn of the stage loop, in order.
-inline constexpr std::array<Stage, 9> kStageLoop = {
-    Stage::kGenerate,     Stage::kExtend,        Stage::kMediumEvent,
-    Stage::kSneeProbe,    Stage::kSubdivision,   Stage::kShadeSurface,
-    Stage::kShadeEscaped, Stage::kShadowConnect, Stage::kRetire};
 
 // Path state, queues and statistics of `slots` path slots, reused by every unit run in it.
 struct UnitWorkspace {
@@ -72,7 +65,8 @@ struct UnitWorkspace {
 // out[(sample - sample_begin) * pixel_count + local_pixel].
 void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws);
 bool work_unit_finished(const UnitWorkspace& ws);
-// Runs one stage of the current unit's loop; a stage whose input queue is empty is skipped.
+// Runs one stage of the current unit's loop (a turn is kStageLoop in order); a stage whose
+// input is empty is skipped.
 void run_stage(const KernelContext& ctx, Stage stage, UnitWorkspace& ws);
 // Runs a unit turn after turn until it is complete (returns true) or `give_up`, asked before
 // every turn, says true (returns false; the unit's samples so far are not usable).
