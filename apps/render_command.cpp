@@ -43,6 +43,29 @@ void warn_about_nonfinite_samples(const RenderStats& stats) {
                static_cast<unsigned long long>(stats.paths), percent);
 }
 
+// "64 spp", or what the budgets left of it: "24 of 1000 spp (time budget spent)", "mean 37.5
+// spp, 16 to 256 (noise target 0.05)".
+std::string samples_summary(const RenderResult& result, int spp) {
+  const Film& film = result.film;
+  char text[160];
+  if (film.meta.noise_target > 0 && !film.pixel_spp.empty()) {
+    double total = 0;
+    uint32_t most = 0;
+    for (const uint32_t n : film.pixel_spp) {
+      total += n;
+      most = std::max(most, n);
+    }
+    std::snprintf(text, sizeof text, "mean %.1f spp, %d to %u of %d (noise target %g%s)",
+                  total / static_cast<double>(film.pixel_spp.size()), film.meta.min_spp, most, spp,
+                  film.meta.noise_target, result.time_budget_spent ? ", time budget spent" : "");
+  } else if (result.time_budget_spent) {
+    std::snprintf(text, sizeof text, "%d of %d spp (time budget spent)", film.meta.min_spp, spp);
+  } else {
+    std::snprintf(text, sizeof text, "%d spp", spp);
+  }
+  return text;
+}
+
 }  // namespace
 
 RenderCommand::RenderCommand(CLI::App& parent)
@@ -101,6 +124,15 @@ RenderCommand::RenderCommand(CLI::App& parent)
                "Also write the image so far every SECONDS while rendering (0: only at the end)")
       ->check(finite_at_least(0))
       ->capture_default_str();
+  c.add_option("--time", options_.time_seconds,
+               "Stop after about SECONDS: once they have passed no new round (--samples-per-unit "
+               "samples of every pixel) starts, so every pixel holds whole rounds "
+               "(docs/budgets.md)")
+      ->check(finite_positive());
+  c.add_option("--noise-target", options_.noise_target,
+               "Adaptive sampling: each tile takes rounds until every pixel's relative standard "
+               "error of luminance is at most REL, up to --spp (docs/budgets.md)")
+      ->check(finite_positive());
   c.add_flag("-q,--quiet", quiet_, "No progress output while rendering");
   c.add_option_function<std::string>(
        "--max-memory",
@@ -202,6 +234,10 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   if (distribution.shard_count > 1 && checkpoint_seconds_ > 0)
     throw std::invalid_argument(
         "--checkpoint is not available when the render is split across processes");
+  // Each process would read its own clock and stop at its own round.
+  if (distribution.shard_count > 1 && options.time_seconds > 0)
+    throw std::invalid_argument(
+        "--time is not available when the render is split across processes");
   const bool shows_progress = !quiet_ && distribution.shard == 0;
   if (!given("--spp")) options.spp = scene.render.spp;
   if (!given("--max-depth")) options.max_depth = scene.render.max_depth;
@@ -270,9 +306,10 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   write_images(result.film, images);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
   if (result.complete) {
-    std::printf("rendered %s: %s, %dx%d, %d spp, %.2f s, %.1f Mrays/s\n", name.c_str(),
-                options.integrator.c_str(), result.film.width, result.film.height, options.spp,
-                result.stats.seconds, result.stats.mrays_per_second());
+    std::printf("rendered %s: %s, %dx%d, %s, %.2f s, %.1f Mrays/s\n", name.c_str(),
+                options.integrator.c_str(), result.film.width, result.film.height,
+                samples_summary(result, options.spp).c_str(), result.stats.seconds,
+                result.stats.mrays_per_second());
   } else {
     std::printf(
         "interrupted %s after %llu of %lld pixel samples (every pixel has at least %d "

@@ -22,6 +22,9 @@ struct FilmMetadata {
   // Samples that were NaN or infinite and went into the image as 0 (a sign of a numerical
   // fault: a correct image has none).
   uint64_t nonfinite_samples = 0;
+  // The budgets the render ran under (docs/budgets.md); 0 where none was given.
+  double time_budget_seconds = 0;
+  double noise_target = 0;
 };
 
 struct Film {
@@ -29,6 +32,8 @@ struct Film {
   int height = 0;
   std::vector<Rgb> mean;              // row-major, top row first
   std::vector<Rgb> variance_of_mean;  // per channel, sample variance / spp
+  // Samples each pixel holds; empty when the image does not say (every pixel has meta.min_spp).
+  std::vector<uint32_t> pixel_spp;
   FilmMetadata meta;
   Rgb& at(int x, int y) { return mean[static_cast<size_t>(y) * width + x]; }
   const Rgb& at(int x, int y) const { return mean[static_cast<size_t>(y) * width + x]; }
@@ -37,8 +42,9 @@ struct Film {
 // Further string attributes of an EXR (name, value), e.g. the settings a render was made with.
 using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
 
-// Writes a linear float EXR with channels R,G,B and variance.R/G/B and the metadata as
-// "snee:*" attributes, then `extra`. Throws std::runtime_error naming the file on failure.
+// Writes a linear float EXR with channels R,G,B and variance.R/G/B, a channel "spp" when the
+// pixels' sample counts differ, and the metadata as "snee:*" attributes, then `extra`. Throws
+// std::runtime_error naming the file on failure.
 void write_exr(const Film& film, const std::string& path, const ExrAttributes& extra = {});
 // Writes an 8-bit preview through `tone` (default: clamped, exposure 0, sRGB encoded); format
 // from the extension (PNG, JPEG...).

@@ -6,11 +6,16 @@
 // snee:min_spp (int, the fewest samples of any pixel: below snee:spp in a partial image),
 // snee:integrator (string), snee:seed (string, decimal: EXR has no unsigned 32-bit attribute),
 // snee:render_seconds (double), snee:scene (string), snee:nonfinite_samples (string, decimal:
-// EXR has no 64-bit integer attribute), snee:version (string) and "Software".
+// EXR has no 64-bit integer attribute), snee:version (string) and "Software". When the pixels'
+// sample counts differ (adaptive sampling, an interrupted render) a FLOAT channel "spp" holds
+// each pixel's (exact up to 2^24); snee:time_budget_seconds and snee:noise_target (double) are
+// written only for a render that ran under them (docs/budgets.md).
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -27,6 +32,7 @@ namespace {
 
 constexpr std::array<const char*, 6> kChannels = {"R",          "G",          "B",
                                                   "variance.R", "variance.G", "variance.B"};
+constexpr const char* kSppChannel = "spp";
 
 [[noreturn]] void fail(const std::string& what, const std::string& path, const std::string& why) {
   throw std::runtime_error(what + " '" + path + "': " + (why.empty() ? "unknown error" : why));
@@ -46,6 +52,17 @@ void write_pixels(OIIO::ImageOutput& out, const OIIO::ImageSpec& spec, const std
   if (!written || !closed) fail("cannot write image", path, out.geterror());
 }
 
+// A sample count per pixel is written only where it says more than snee:min_spp.
+bool spp_varies(const Film& film) {
+  return !film.pixel_spp.empty() &&
+         std::adjacent_find(film.pixel_spp.begin(), film.pixel_spp.end(), std::not_equal_to<>()) !=
+             film.pixel_spp.end();
+}
+
+void set_optional_double(OIIO::ImageSpec& spec, const char* name, const double& value) {
+  if (value != 0) spec.attribute(name, OIIO::TypeDesc::DOUBLE, &value);
+}
+
 size_t pixel_count(const Film& film) {
   return static_cast<size_t>(film.width) * static_cast<size_t>(film.height);
 }
@@ -60,9 +77,12 @@ void check_film(const Film& film, const std::string& path) {
 void write_exr(const Film& film, const std::string& path, const ExrAttributes& extra) {
   check_film(film, path);
   const bool has_variance = film.variance_of_mean.size() == film.mean.size();
-  const int nchannels = has_variance ? 6 : 3;
+  const bool has_spp = film.pixel_spp.size() == film.mean.size() && spp_varies(film);
+  const int colour_channels = has_variance ? 6 : 3;
+  const int nchannels = colour_channels + (has_spp ? 1 : 0);
   OIIO::ImageSpec spec(film.width, film.height, nchannels, OIIO::TypeDesc::FLOAT);
-  spec.channelnames.assign(kChannels.begin(), kChannels.begin() + nchannels);
+  spec.channelnames.assign(kChannels.begin(), kChannels.begin() + colour_channels);
+  if (has_spp) spec.channelnames.emplace_back(kSppChannel);
   spec.attribute("compression", "zip");
   spec.attribute("Software", "snee " SNEE_VERSION);
   spec.attribute("snee:version", SNEE_VERSION);
@@ -73,6 +93,8 @@ void write_exr(const Film& film, const std::string& path, const ExrAttributes& e
   spec.attribute("snee:render_seconds", OIIO::TypeDesc::DOUBLE, &film.meta.render_seconds);
   spec.attribute("snee:scene", film.meta.scene);
   spec.attribute("snee:nonfinite_samples", std::to_string(film.meta.nonfinite_samples));
+  set_optional_double(spec, "snee:time_budget_seconds", film.meta.time_budget_seconds);
+  set_optional_double(spec, "snee:noise_target", film.meta.noise_target);
   for (const auto& [name, value] : extra) spec.attribute(name, value);
 
   std::vector<float> pixels;
@@ -81,6 +103,7 @@ void write_exr(const Film& film, const std::string& path, const ExrAttributes& e
     for (int c = 0; c < 3; ++c) pixels.push_back(film.mean[i][c]);
     if (has_variance)
       for (int c = 0; c < 3; ++c) pixels.push_back(film.variance_of_mean[i][c]);
+    if (has_spp) pixels.push_back(static_cast<float>(film.pixel_spp[i]));
   }
   auto out = create_output(path);
   write_pixels(*out, spec, path, OIIO::TypeDesc::FLOAT, pixels.data());
@@ -124,6 +147,7 @@ Film read_exr(const std::string& path) {
       fail("cannot read image", path, std::string("no channel ") + kChannels[c]);
   }
   const bool has_variance = index[3] >= 0 && index[4] >= 0 && index[5] >= 0;
+  const int spp_index = spec.channelindex(kSppChannel);
 
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
@@ -134,11 +158,18 @@ Film read_exr(const std::string& path) {
   film.height = spec.height;
   film.mean.resize(pixel_count(film));
   if (has_variance) film.variance_of_mean.resize(pixel_count(film));
+  if (spp_index >= 0) film.pixel_spp.resize(pixel_count(film));
   for (size_t i = 0; i < pixel_count(film); ++i) {
     const float* px = &pixels[i * spec.nchannels];
     for (int c = 0; c < 3; ++c) {
       film.mean[i][c] = px[index[c]];
       if (has_variance) film.variance_of_mean[i][c] = px[index[c + 3]];
+    }
+    if (spp_index >= 0) {
+      const float spp = px[spp_index];
+      if (!(spp >= 0 && spp < 4294967296.0f) || spp != std::floor(spp))
+        fail("cannot read image", path, "channel spp holds a value that is not a sample count");
+      film.pixel_spp[i] = static_cast<uint32_t>(spp);
     }
   }
 
@@ -156,6 +187,9 @@ Film read_exr(const std::string& path) {
           .ec != std::errc())
     fail("cannot read image", path, "snee:nonfinite_samples is not an unsigned integer");
   spec.getattribute("snee:render_seconds", OIIO::TypeDesc::DOUBLE, &film.meta.render_seconds);
+  spec.getattribute("snee:time_budget_seconds", OIIO::TypeDesc::DOUBLE,
+                    &film.meta.time_budget_seconds);
+  spec.getattribute("snee:noise_target", OIIO::TypeDesc::DOUBLE, &film.meta.noise_target);
   return film;
 }
 

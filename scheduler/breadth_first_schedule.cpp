@@ -15,7 +15,7 @@ void run_units_breadth_first(const KernelContext& ctx, const UnitSource& source,
   // lanes idle until that unit is done.
   const auto refill = [&] {
     while (!idle.empty()) {
-      const std::optional<size_t> k = source.window.take(/*wait=*/false);
+      const std::optional<size_t> k = source.take(/*wait=*/false);
       if (!k) return;
       const size_t lane = idle.back();
       idle.pop_back();

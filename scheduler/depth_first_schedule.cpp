@@ -15,7 +15,7 @@ void run_units_depth_first(const KernelContext& ctx, const UnitSource& source, i
         set_flush_to_zero();
         UnitWorkspace& ws = workspaces.local();
         try {
-          while (const std::optional<size_t> k = source.window.take(/*wait=*/true)) {
+          while (const std::optional<size_t> k = source.take(/*wait=*/true)) {
             const WorkUnit unit = source.grid.unit(*k);
             // A stop drops the unit in flight rather than waiting for it: with many threads
             // per core, or costly units, finishing them could take minutes.

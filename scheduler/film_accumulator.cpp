@@ -2,14 +2,18 @@
 
 #include <algorithm>
 
+#include "scheduler/noise_target.h"
+
 namespace snee {
 
-FilmAccumulator::FilmAccumulator(const UnitGrid& grid, int width, int height, size_t buffers)
+FilmAccumulator::FilmAccumulator(const UnitGrid& grid, int width, int height, size_t buffers,
+                                 double noise_target)
     : grid_(grid),
       width_(width),
       height_(height),
       buffer_count_(buffers),
       buffer_size_(grid.max_unit_samples()),
+      noise_target_(noise_target),
       buffers_(buffers * buffer_size_),
       tiles_(new Tile[grid.tile_count()]),
       sum_(static_cast<size_t>(width) * height * 3, 0.0),
@@ -20,8 +24,11 @@ Rgb* FilmAccumulator::buffer(size_t unit) {
 }
 
 void FilmAccumulator::add(size_t unit) {
-  Tile& tile = tiles_[grid_.tile_of(unit)];
+  const size_t t = grid_.tile_of(unit);
+  Tile& tile = tiles_[t];
   std::lock_guard<std::mutex> lock(tile.mutex);
+  // A unit taken before its tile converged (the window ran ahead of the tile) is dropped.
+  if (tile.converged) return;
   if (grid_.chunk_of(unit) != tile.next_chunk) {
     tile.parked.push_back(unit);
     return;
@@ -30,6 +37,11 @@ void FilmAccumulator::add(size_t unit) {
   ++tile.next_chunk;
   // Parked units of this tile are later chunks; add them while they follow on without a gap.
   for (;;) {
+    if (noise_target_ > 0 && meets_noise_target(t)) {
+      tile.converged = true;
+      tile.parked.clear();
+      return;
+    }
     const auto next = std::find_if(tile.parked.begin(), tile.parked.end(),
                                    [&](size_t u) { return grid_.chunk_of(u) == tile.next_chunk; });
     if (next == tile.parked.end()) break;
@@ -37,6 +49,21 @@ void FilmAccumulator::add(size_t unit) {
     ++tile.next_chunk;
     tile.parked.erase(next);
   }
+}
+
+bool FilmAccumulator::wants(size_t unit) const {
+  Tile& tile = tiles_[grid_.tile_of(unit)];
+  std::lock_guard<std::mutex> lock(tile.mutex);
+  return !tile.converged;
+}
+
+bool FilmAccumulator::tiles_done(uint32_t chunks) const {
+  for (size_t t = 0; t < grid_.tile_count(); ++t) {
+    Tile& tile = tiles_[t];
+    std::lock_guard<std::mutex> lock(tile.mutex);
+    if (!tile.converged && tile.next_chunk < chunks) return false;
+  }
+  return true;
 }
 
 void FilmAccumulator::add_to_sums(size_t k) {
@@ -58,6 +85,35 @@ void FilmAccumulator::add_to_sums(size_t k) {
   }
 }
 
+uint32_t FilmAccumulator::tile_spp(const Tile& tile) const {
+  return std::min(grid_.spp(), tile.next_chunk * grid_.samples_per_unit());
+}
+
+void FilmAccumulator::estimate(size_t p, uint32_t spp, double mean[3],
+                               double variance_of_mean[3]) const {
+  const double n = spp;
+  for (int c = 0; c < 3; ++c) {
+    mean[c] = sum_[3 * p + c] / n;
+    const double var =
+        spp > 1 ? std::max(0.0, (sum_sq_[3 * p + c] - n * mean[c] * mean[c]) / (n - 1)) : 0.0;
+    variance_of_mean[c] = var / n;
+  }
+}
+
+bool FilmAccumulator::meets_noise_target(size_t t) const {
+  const uint32_t spp = tile_spp(tiles_[t]);
+  if (spp < std::min(grid_.spp(), kMinAdaptiveSpp)) return false;
+  const WorkUnit u = grid_.unit(t);
+  for (int y = u.y0; y < u.y1; ++y) {
+    for (int x = u.x0; x < u.x1; ++x) {
+      double mean[3], variance_of_mean[3];
+      estimate(static_cast<size_t>(y) * width_ + x, spp, mean, variance_of_mean);
+      if (relative_standard_error(mean, variance_of_mean) > noise_target_) return false;
+    }
+  }
+  return true;
+}
+
 Film FilmAccumulator::resolve(const FilmMetadata& meta) const {
   Film film;
   film.meta = meta;
@@ -66,25 +122,25 @@ Film FilmAccumulator::resolve(const FilmMetadata& meta) const {
   const size_t pixel_count = static_cast<size_t>(width_) * height_;
   film.mean.assign(pixel_count, Rgb(0.0f));
   film.variance_of_mean.assign(pixel_count, Rgb(0.0f));
+  film.pixel_spp.assign(pixel_count, 0);
   uint32_t min_spp = grid_.spp();
   for (size_t t = 0; t < grid_.tile_count(); ++t) {
     Tile& tile = tiles_[t];
     std::lock_guard<std::mutex> lock(tile.mutex);
-    const uint32_t spp = std::min(grid_.spp(), tile.next_chunk * grid_.samples_per_unit());
+    const uint32_t spp = tile_spp(tile);
     min_spp = std::min(min_spp, spp);
     if (spp == 0) continue;
     const WorkUnit u = grid_.unit(t);
-    const double n = spp;
     for (int y = u.y0; y < u.y1; ++y) {
       for (int x = u.x0; x < u.x1; ++x) {
         const size_t p = static_cast<size_t>(y) * width_ + x;
+        double mean[3], variance_of_mean[3];
+        estimate(p, spp, mean, variance_of_mean);
         for (int c = 0; c < 3; ++c) {
-          const double mean = sum_[3 * p + c] / n;
-          const double var =
-              spp > 1 ? std::max(0.0, (sum_sq_[3 * p + c] - n * mean * mean) / (n - 1)) : 0.0;
-          film.mean[p][c] = static_cast<float>(mean);
-          film.variance_of_mean[p][c] = static_cast<float>(var / n);
+          film.mean[p][c] = static_cast<float>(mean[c]);
+          film.variance_of_mean[p][c] = static_cast<float>(variance_of_mean[c]);
         }
+        film.pixel_spp[p] = spp;
       }
     }
   }

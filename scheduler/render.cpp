@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <memory>
 #include <stdexcept>
@@ -60,6 +61,11 @@ void validate(const Scene& scene, const RenderOptions& o) {
   if (o.shard_count < 1 || o.shard < 0 || o.shard >= o.shard_count)
     throw std::invalid_argument("shard must be from 0 to shard count - 1");
   if (scene.camera.width < 1 || scene.camera.height < 1) throw std::invalid_argument("empty image");
+  // Written as !(x >= 0) so that NaN is refused too.
+  if (!(o.time_seconds >= 0) || !std::isfinite(o.time_seconds))
+    throw std::invalid_argument("time budget must be a finite number of seconds, 0 for none");
+  if (!(o.noise_target >= 0) || !std::isfinite(o.noise_target))
+    throw std::invalid_argument("noise target must be a finite relative error, 0 for none");
 }
 
 // Units in flight per thread (the window's lead, unit_window.h). A unit holds up the threads
@@ -76,15 +82,16 @@ constexpr uint64_t kWorkspaceBytesPerSlot = 4096;
 constexpr uint64_t kBytesPerTile = 128;
 
 // The large allocations of a render, computed from its size before any is made: the film's sums
-// (double) and the resolved film (mean and variance), the tiles, one sample buffer per unit in
-// the window, and every workspace.
+// (double) and the resolved film (mean, variance and sample count), the tiles, one sample
+// buffer per unit in the window, and every workspace.
 uint64_t render_memory_bytes(const Scene& scene, const RenderOptions& o, int threads,
                              Schedule schedule) {
   const uint64_t width = static_cast<uint64_t>(scene.camera.width);
   const uint64_t height = static_cast<uint64_t>(scene.camera.height);
   const uint64_t tile = static_cast<uint64_t>(o.tile_size);
   const uint64_t pixels = saturating_multiply(width, height);
-  const uint64_t film = saturating_multiply(pixels, 6 * sizeof(double) + 2 * sizeof(Rgb));
+  const uint64_t film =
+      saturating_multiply(pixels, 6 * sizeof(double) + 2 * sizeof(Rgb) + sizeof(uint32_t));
   const uint64_t tiles = ((width + tile - 1) / tile) * ((height + tile - 1) / tile) /
                              static_cast<uint64_t>(o.shard_count) +
                          1;
@@ -158,13 +165,16 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   // A shard may own no tile at all (more processes than tiles); its window still needs a lead.
   const size_t lead = std::max<size_t>(1, std::min(grid.size(), kUnitsInFlightPerThread * threads));
   UnitWindow window(grid.size(), lead);
-  FilmAccumulator film_sums(grid, width, height, lead);
+  FilmAccumulator film_sums(grid, width, height, lead, options.noise_target);
   FilmMetadata meta;
   meta.integrator = integrator_name(integrator);
   meta.seed = options.seed;
   meta.scene = scene.name;
+  meta.time_budget_seconds = options.time_seconds;
+  meta.noise_target = options.noise_target;
   UnitProgress unit_progress(hooks, grid.sample_count(), start, film_sums, meta);
-  const UnitSource source{grid, window, film_sums, unit_progress};
+  TimeBudget time_budget(options.time_seconds, start);
+  const UnitSource source{grid, window, film_sums, unit_progress, time_budget};
 
   // The megakernel is the same loop over one-slot workspaces: one path at a time per thread.
   const size_t slots =
@@ -186,7 +196,9 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   RenderResult result;
   result.film = film_sums.resolve(meta);
   Film& film = result.film;
-  result.complete = film.meta.min_spp == options.spp;
+  // Complete: every tile holds the rounds it was to take, or has met the noise target.
+  result.complete = film_sums.tiles_done(time_budget.rounds(grid.chunk_count()));
+  result.time_budget_spent = time_budget.spent();
   RenderStats& stats = result.stats;
   const auto end = std::chrono::steady_clock::now();
   stats.seconds = std::chrono::duration<double>(end - start).count();

@@ -51,6 +51,12 @@ struct RenderOptions {
   // raster index is `shard` modulo `shard_count` are rendered, the other pixels stay black.
   int shard = 0;
   int shard_count = 1;
+  // Budgets (docs/budgets.md), 0 = none. After `time_seconds` of sampling no new round (a chunk
+  // of samples_per_unit sample indices over every tile) starts; the rounds started finish.
+  // With `noise_target`, each tile takes chunks until its pixels' relative standard error is
+  // at most the target (scheduler/noise_target.h) or it holds spp samples.
+  double time_seconds = 0;
+  double noise_target = 0;
   SneeOptions snee;  // open choices of docs/method.md section 7 (integrator "snee")
   // Clip each sample's RGB radiance to this before it is averaged (0: off). Biased: the image
   // no longer converges to the true one; `snee render --clamp`.
@@ -109,6 +115,9 @@ struct RenderResult {
   Film film;
   RenderStats stats;
   bool complete = true;  // false when stop_requested cut the render short
+  // The time budget stopped the render before spp: every tile that had not met the noise
+  // target holds the same whole rounds (film.meta.min_spp samples).
+  bool time_budget_spent = false;
 };
 
 // Throws std::invalid_argument for an unknown integrator or invalid options, and when the render

@@ -14,19 +14,25 @@ double UnitProgress::elapsed_seconds() const {
 bool UnitProgress::unit_finished(const UnitWorkspace& ws) {
   const uint64_t rays = rays_done_ += rays_traced(ws.counters) - ws.rays_at_start;
   nonfinite_done_ += ws.counters.nonfinite_samples - ws.nonfinite_at_start;
-  const int64_t done = samples_done_ += static_cast<int64_t>(ws.unit->sample_count());
-  if (hooks_.progress) {
-    Progress p;
-    p.samples_done = done;
-    p.samples_total = samples_total_;
-    p.fraction = static_cast<double>(done) / static_cast<double>(samples_total_);
-    p.elapsed_seconds = elapsed_seconds();
-    p.mrays_per_second =
-        p.elapsed_seconds > 0 ? static_cast<double>(rays) / p.elapsed_seconds * 1e-6 : 0;
-    hooks_.progress(p);
-  }
+  report(samples_done_ += static_cast<int64_t>(ws.unit->sample_count()), rays);
   if (hooks_.checkpoint && hooks_.checkpoint_seconds > 0) checkpoint_if_due();
   return !stop_requested();
+}
+
+void UnitProgress::unit_skipped(int64_t samples) {
+  report(samples_done_ += samples, rays_done_.load());
+}
+
+void UnitProgress::report(int64_t done, uint64_t rays) {
+  if (!hooks_.progress) return;
+  Progress p;
+  p.samples_done = done;
+  p.samples_total = samples_total_;
+  p.fraction = static_cast<double>(done) / static_cast<double>(samples_total_);
+  p.elapsed_seconds = elapsed_seconds();
+  p.mrays_per_second =
+      p.elapsed_seconds > 0 ? static_cast<double>(rays) / p.elapsed_seconds * 1e-6 : 0;
+  hooks_.progress(p);
 }
 
 bool UnitProgress::stop_requested() {

@@ -23,12 +23,15 @@ class UnitProgress {
   // `ws` has just finished its current unit and the film holds it. Returns false once the
   // caller asked to stop. Thread-safe.
   bool unit_finished(const UnitWorkspace& ws);
+  // A unit of `samples` was not run (its tile had met the noise target): it counts as done.
+  void unit_skipped(int64_t samples);
   // Whether the caller asked to stop (RenderHooks::stop_requested); once it did, stays true
   // without asking again. Thread-safe.
   bool stop_requested();
 
  private:
   double elapsed_seconds() const;
+  void report(int64_t samples_done, uint64_t rays_done);
   void checkpoint_if_due();
 
   const RenderHooks& hooks_;

@@ -9,6 +9,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "scheduler/film_accumulator.h"
+#include "scheduler/time_budget.h"
 #include "scheduler/unit_grid.h"
 #include "scheduler/unit_progress.h"
 #include "scheduler/unit_window.h"
@@ -22,7 +23,12 @@ struct UnitSource {
   UnitWindow& window;
   FilmAccumulator& film;
   UnitProgress& progress;
+  TimeBudget& time_budget;
 
+  // The next unit to run, from the window (UnitWindow::take). Units of tiles that have met the
+  // noise target are finished unrun; once the time budget is spent, the window closes at the
+  // first unit of the next round (nullopt) and the units in flight finish.
+  std::optional<size_t> take(bool wait) const;
   // Unit k has run in `ws`. Its samples go into the film before the window learns it finished:
   // only then may a later unit reuse its sample buffer. Stops the window if asked to.
   void unit_done(size_t k, const UnitWorkspace& ws) const {

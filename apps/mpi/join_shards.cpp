@@ -43,6 +43,8 @@ bool join_shards(RenderResult& result, int& exit_status, double timeout_seconds,
   // An Rgb is three packed floats, so each film plane reduces as one float array.
   for (std::vector<Rgb>* plane : {&result.film.mean, &result.film.variance_of_mean})
     join.reduce_in_place(plane->data(), static_cast<int>(3 * plane->size()), MPI_FLOAT, MPI_SUM);
+  join.reduce_in_place(result.film.pixel_spp.data(), static_cast<int>(result.film.pixel_spp.size()),
+                       MPI_UINT32_T, MPI_SUM);
 
   RenderStats& s = result.stats;
   std::vector<uint64_t> counts(s.rays.begin(), s.rays.end());
