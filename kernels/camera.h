@@ -1,5 +1,5 @@
-// Pinhole camera rays: the scalar reference that the batched generation kernel
-// (simd/camera_batch.h) reproduces bit for bit.
+// Pinhole camera rays, written once over the lane type: the scalar function and the batched
+// generation kernel (generate.cpp) run the same template, so they agree bit for bit.
 #pragma once
 
 #include <cstdint>
@@ -24,13 +24,19 @@ inline PinholeCamera pinhole_camera(const KernelContext& ctx) {
           1.0f / static_cast<float>(ctx.height)};
 }
 
-// Unit direction through film position (pixel + jitter); u0, u1 in [0, 1) jitter x and y.
+// Unit direction through film position (px + u0, py + u1) for any lane type F
+// (scene/lane_math.h); u0, u1 in [0, 1) jitter x and y.
+template <lane::Lane F>
+lane::Vec3Of<F> camera_direction(const PinholeCamera& c, F px, F py, F u0, F u1) {
+  const F x = F(2.0f) * (px + u0) * F(c.inv_width) - F(1.0f);
+  const F y = F(1.0f) - F(2.0f) * (py + u1) * F(c.inv_height);
+  return normalize(splat<F>(c.forward) + splat<F>(c.right) * x + splat<F>(c.up) * y);
+}
+
+// Unit direction through pixel + jitter.
 inline Vec3 camera_direction(const PinholeCamera& c, uint32_t pixel, float u0, float u1) {
-  const float px = static_cast<float>(pixel % c.width);
-  const float py = static_cast<float>(pixel / c.width);
-  const float x = 2.0f * (px + u0) * c.inv_width - 1.0f;
-  const float y = 1.0f - 2.0f * (py + u1) * c.inv_height;
-  return normalize(c.forward + c.right * x + c.up * y);
+  return camera_direction(c, static_cast<float>(pixel % c.width),
+                          static_cast<float>(pixel / c.width), u0, u1);
 }
 
 }  // namespace snee

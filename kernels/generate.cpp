@@ -1,8 +1,10 @@
 #include <algorithm>
 
-#include "kernels/simd/camera_batch.h"
+#include "kernels/camera.h"
+#include "kernels/simd/divide.h"
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/slot_chunk.h"
+#include "kernels/simd/vec3_batch.h"
 #include "kernels/stages.h"
 
 namespace snee {
@@ -23,7 +25,12 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
     const UintBatch sample = simd::load_padded(samples + begin, count);
     const simd::RandomBlockBatch r =
         simd::random_block(ctx.seed, pixel, sample, UintBatch(0u), RngPurpose::kCamera, count);
-    const simd::Vec3Batch d = simd::camera_direction(camera, pixel, r.u[0], r.u[1]);
+    // divide()'s precondition: pixel indices below 2^31 (Film indexes pixels with int) and
+    // image edges below 2^22, which the scene loader's limit of 2^16 guarantees.
+    const simd::QuotientRemainder row_col = simd::divide(pixel, camera.width);
+    const FloatBatch px = xsimd::to_float(xsimd::bitwise_cast<IntBatch>(row_col.remainder));
+    const FloatBatch py = xsimd::to_float(xsimd::bitwise_cast<IntBatch>(row_col.quotient));
+    const simd::Vec3Batch d = camera_direction(camera, px, py, r.u[0], r.u[1]);
     chunk.store(state.pixel, pixel);
     chunk.store(state.sample, sample);
     for (uint32_t* field : {state.event, state.depth, state.flags})

@@ -5,12 +5,6 @@
 
 namespace snee {
 
-Vec3 sample_uniform_sphere(Vec2 u) {
-  const float z = 1.0f - 2.0f * u.x;
-  const float r = safe_sqrt(1.0f - z * z);
-  return spherical_direction(r, z, 2.0f * kPi * u.y);
-}
-
 Vec3 sample_cosine_hemisphere(Vec2 u) {
   // Shirley-Chiu concentric mapping keeps strata compact, then Malley's projection to the
   // hemisphere makes the density cos(theta)/pi.

@@ -14,7 +14,15 @@ struct Vec2 {
   float x = 0, y = 0;
 };
 
-Vec3 sample_uniform_sphere(Vec2 u);
+// The sampling template over the lane type (scene/lane_math.h) and its scalar form.
+template <lane::Lane F>
+lane::Vec3Of<F> sample_uniform_sphere(F u0, F u1) {
+  const F z = F(1.0f) - F(2.0f) * u0;
+  return spherical_direction(safe_sqrt(F(1.0f) - z * z), z, F(2.0f * kPi) * u1);
+}
+inline Vec3 sample_uniform_sphere(Vec2 u) {
+  return sample_uniform_sphere<float>(u.x, u.y);
+}
 inline constexpr float uniform_sphere_pdf() {
   return kInv4Pi;
 }

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "scene/lane_math.h"
+
 namespace snee {
 
 inline constexpr float kPi = 3.14159265358979323846f;
@@ -38,6 +40,11 @@ struct Vec3 {
   Vec3& operator/=(float s) { return *this = *this / s; }
   constexpr bool operator==(Vec3 b) const { return x == b.x && y == b.y && z == b.z; }
   constexpr bool operator!=(Vec3 b) const { return !(*this == b); }
+};
+
+template <>
+struct lane::vec3_of<float> {
+  using type = Vec3;
 };
 
 constexpr Vec3 operator*(float s, Vec3 v) {
@@ -87,8 +94,14 @@ constexpr float luminance(Vec3 c) {
 // RGB radiance, throughput and coefficients use the same arithmetic as positions.
 using Rgb = Vec3;
 
+// sqrt(max(0, x)) with std::max's semantics (a NaN becomes 0), for any lane type.
+template <lane::Lane F>
+F safe_sqrt(F x) {
+  using namespace lane;
+  return sqrt(select(F(0.0f) < x, x, F(0.0f)));
+}
 inline float safe_sqrt(float x) {
-  return std::sqrt(std::max(0.0f, x));
+  return safe_sqrt<float>(x);
 }
 inline float safe_acos(float x) {
   return std::acos(std::clamp(x, -1.0f, 1.0f));
@@ -97,23 +110,39 @@ constexpr float sqr(float x) {
   return x * x;
 }
 
-// Orthonormal basis around n (Duff et al. 2017, branchless).
-struct Frame {
-  Vec3 s, t, n;
+// Orthonormal basis around n (Duff et al. 2017, branchless), over the 3-vector V of a lane type.
+template <class V>
+struct FrameT {
+  V s, t, n;
 
-  static Frame from_normal(Vec3 n) {
-    const float sign = std::copysign(1.0f, n.z);
-    const float a = -1.0f / (sign + n.z);
-    const float b = n.x * n.y * a;
-    return {Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x),
-            Vec3(b, sign + n.y * n.y * a, -n.y), n};
+  static FrameT from_normal(const V& n) {
+    using F = decltype(n.x);
+    const F one(1.0f);
+    const F sign = lane::copysign(one, n.z);
+    const F a = F(-1.0f) / (sign + n.z);
+    const F b = n.x * n.y * a;
+    return {V{one + sign * n.x * n.x * a, sign * b, lane::neg(sign) * n.x},
+            V{b, sign + n.y * n.y * a, lane::neg(n.y)}, n};
   }
-  Vec3 to_local(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
-  Vec3 to_world(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }
+  V to_local(const V& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+  V to_world(const V& v) const { return s * v.x + t * v.y + n * v.z; }
 };
+using Frame = FrameT<Vec3>;
 
+// The azimuth's sine and cosine come from lane::sincos: libm's for float.
+template <lane::Lane F>
+lane::Vec3Of<F> spherical_direction(F sin_theta, F cos_theta, F phi) {
+  const auto [sin_phi, cos_phi] = lane::sincos(phi);
+  return {sin_theta * cos_phi, sin_theta * sin_phi, cos_theta};
+}
 inline Vec3 spherical_direction(float sin_theta, float cos_theta, float phi) {
-  return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+  return spherical_direction<float>(sin_theta, cos_theta, phi);
+}
+
+// v in every lane.
+template <lane::Lane F>
+lane::Vec3Of<F> splat(Vec3 v) {
+  return {F(v.x), F(v.y), F(v.z)};
 }
 
 // Row-major 3x4 affine transform (rotation/scale/shear + translation).

@@ -1,7 +1,7 @@
 // Unpolarised Fresnel reflectance and Snell refraction for a dielectric interface.
 #pragma once
 
-#include "kernels/lane_math.h"
+#include "scene/lane_math.h"
 #include "scene/math.h"
 
 namespace snee {
@@ -9,7 +9,7 @@ namespace snee {
 // Reflectance for light arriving with cosine cos_i (> 0) on the side of index eta_i, the other
 // side having index eta_t; eta = eta_t / eta_i. Returns 1 under total internal reflection.
 // The value is the same from both sides of a refraction pair (docs/method.md 4.3). F is the lane
-// type (kernels/lane_math.h); both outcomes are computed and selected.
+// type (scene/lane_math.h); both outcomes are computed and selected.
 template <class F>
 F fresnel_dielectric(F cos_i, F eta) {
   using namespace lane;

@@ -1,8 +1,9 @@
 // Componentwise arithmetic on Vec3Batch (scene/math.h's Vec3 operators, one batch per
-// component), the cross product and lane selection, shared by the batched kernels.
+// component), the cross product and lane selection: the named forms for the batched kernels,
+// the operators for the templates written once over the lane type (the same operations).
 #pragma once
 
-#include "kernels/simd/arch.h"
+#include "kernels/simd/lane_batch.h"
 
 namespace snee::simd {
 
@@ -29,14 +30,32 @@ inline Vec3Batch scale(const Vec3Batch& v, FloatBatch s) {
 inline Vec3Batch div(const Vec3Batch& v, FloatBatch s) {
   return {v.x / s, v.y / s, v.z / s};
 }
-// -x with IEEE sign semantics (-0 for +0), as the scalar code's unary minus. xsimd 8.1 negates
-// an AVX-512 float batch as 0 - x, which gives +0 for +0 and so parts from the scalar result on
-// zero components; flipping the sign bit is exact on every architecture.
-inline FloatBatch neg(FloatBatch x) {
-  return xsimd::bitwise_xor(x, FloatBatch(-0.0f));
-}
 inline Vec3Batch negate(const Vec3Batch& v) {
   return {neg(v.x), neg(v.y), neg(v.z)};
+}
+inline Vec3Batch operator+(const Vec3Batch& a, const Vec3Batch& b) {
+  return add(a, b);
+}
+inline Vec3Batch operator-(const Vec3Batch& a, const Vec3Batch& b) {
+  return sub(a, b);
+}
+inline Vec3Batch operator*(const Vec3Batch& a, const Vec3Batch& b) {
+  return mul(a, b);
+}
+inline Vec3Batch operator*(const Vec3Batch& v, FloatBatch s) {
+  return scale(v, s);
+}
+inline Vec3Batch operator*(FloatBatch s, const Vec3Batch& v) {
+  return scale(v, s);
+}
+inline Vec3Batch operator/(const Vec3Batch& v, FloatBatch s) {
+  return div(v, s);
+}
+inline Vec3Batch operator-(const Vec3Batch& v) {
+  return negate(v);
+}
+inline Vec3Batch normalize(const Vec3Batch& v) {
+  return v / xsimd::sqrt(dot(v, v));
 }
 // Stores the components to three aligned arrays.
 inline void store_aligned(const Vec3Batch& v, float* x, float* y, float* z) {
