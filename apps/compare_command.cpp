@@ -4,11 +4,18 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "apps/contact_sheet.h"
+#include "apps/equal_time_plan.h"
 #include "apps/image_error.h"
+#include "apps/labelled_preview.h"
 #include "apps/option_checks.h"
+#include "apps/output_files.h"
+#include "apps/progress_bar.h"
 #include "apps/resolution.h"
 #include "apps/stats_json.h"
 #include "scene/scene_loader.h"
@@ -22,55 +29,83 @@ namespace fs = std::filesystem;
 
 // Seeds of the compared renders and of the reference differ, so their noise is independent.
 constexpr uint32_t kReferenceSeedOffset = 1000003;
-// Pilot renders double their spp from this until one takes this share of the budget.
+// Pilot renders double their spp from this until one samples for this share of the budget.
 constexpr int kFirstPilotSpp = 2;
-constexpr double kPilotShare = 0.1;
-constexpr int kMaxEqualTimeSpp = 1 << 30;
+constexpr double kPilotShare = 0.05;
+constexpr int kMostPilotSpp = 1 << 20;
 
 struct Entry {
   std::string integrator;
   Film film;
   RenderStats stats;
   int spp = 0;
+  int samples_per_round = 0;
   ImageError error;
   double efficiency = 0;
   double efficiency_trimmed = 0;
 };
 
-RenderResult render_logged(const Scene& scene, RenderOptions options, bool quiet,
-                           const char* role) {
-  RenderResult r = render(scene, options);
+// One render with its progress on stderr under `label`, then a line saying what it took.
+RenderResult render_shown(const Scene& scene, const RenderOptions& options, bool quiet,
+                          const std::string& label) {
+  ProgressBar bar(stderr, label, options.time_seconds);
+  RenderHooks hooks;
+  if (!quiet) hooks.progress = [&bar](const Progress& p) { bar.update(p); };
+  RenderResult r = render(scene, options, hooks);
+  bar.finish();
   if (!quiet) {
-    std::fprintf(stderr, "  %s %s: %d spp in %.2f s\n", role, options.integrator.c_str(),
-                 options.spp, r.stats.seconds);
+    std::fprintf(stderr, "  %s: %d spp in %.2f s\n", label.c_str(), r.film.meta.min_spp,
+                 r.stats.seconds);
   }
   return r;
 }
 
-// The spp whose render takes `seconds`. A render's time is a fixed part (scene set-up, threads,
-// the film) plus a part per sample; pilots of growing spp until one is long enough to time
-// measure both from the last two, so a short pilot's set-up cost does not inflate the time per
-// sample (which would hand the cheaper integrator less than its share of the time).
-int equal_time_spp(const Scene& scene, RenderOptions options, double seconds, bool quiet) {
-  int spp = kFirstPilotSpp;
-  options.spp = spp;
-  double time = render_logged(scene, options, quiet, "pilot").stats.seconds;
-  int previous_spp = 0;
-  double previous_time = 0;
-  while (time < kPilotShare * seconds && spp < (1 << 20)) {
-    previous_spp = spp;
-    previous_time = time;
-    spp *= 2;
+// Sampling seconds per spp, from pilots of doubling spp until one samples long enough to time.
+double seconds_per_spp(const Scene& scene, RenderOptions options, double budget, bool quiet) {
+  for (int spp = kFirstPilotSpp;; spp *= 2) {
     options.spp = spp;
-    time = render_logged(scene, options, quiet, "pilot").stats.seconds;
+    const RenderStats stats =
+        render_shown(scene, options, quiet, options.integrator + " pilot").stats;
+    if (stats.sampling_seconds >= kPilotShare * budget || spp >= kMostPilotSpp)
+      return stats.sampling_seconds / spp;
   }
-  const double per_spp = previous_spp > 0 && time > previous_time
-                             ? (time - previous_time) / (spp - previous_spp)
-                             : time / spp;
-  const double fixed = std::max(0.0, time - per_spp * spp);
-  // In double first: a long budget over a cheap sample would overflow an int.
-  const double fitting = std::floor((seconds - fixed) / per_spp);
-  return static_cast<int>(std::clamp(fitting, 1.0, static_cast<double>(kMaxEqualTimeSpp)));
+}
+
+// The reference must match the renders pixel for pixel; finding out after they ran would
+// waste the whole budget.
+Film read_reference(const std::string& file, const Scene& scene) {
+  Film reference = read_exr(file);
+  const int w = scene.camera.width, h = scene.camera.height;
+  if (reference.width != w || reference.height != h) {
+    throw std::invalid_argument(
+        "--reference " + file + ": the reference is " + std::to_string(reference.width) + "x" +
+        std::to_string(reference.height) + " but the renders would be " + std::to_string(w) + "x" +
+        std::to_string(h) + " (the scene's camera or --resolution); give --resolution " +
+        std::to_string(reference.width) + "x" + std::to_string(reference.height) +
+        " or a reference of the renders' size");
+  }
+  return reference;
+}
+
+// The font of the contact sheet's labels: the one given (which must draw), else the first
+// default found, else none, said once up front.
+std::optional<fs::path> label_font(const std::string& given, bool quiet) {
+  if (!given.empty()) {
+    check_label_font(given);
+    return fs::path(given);
+  }
+  const std::vector<fs::path> candidates = default_label_fonts();
+  std::optional<fs::path> font = find_label_font(candidates);
+  if (!font && !quiet) {
+    std::string tried;
+    for (const fs::path& c : candidates) tried += " " + c.string();
+    std::fprintf(stderr,
+                 "warning: no font for the contact sheet's labels (looked for%s; install "
+                 "fonts-dejavu-core or give --font FILE.ttf): the sheet is written without "
+                 "them\n",
+                 tried.c_str());
+  }
+  return font;
 }
 
 }  // namespace
@@ -108,6 +143,9 @@ CompareCommand::CompareCommand(CLI::App& parent)
       ->capture_default_str();
   c.add_option("--seed", seed_, "Seed of the compared renders")->capture_default_str();
   c.add_option("-o,--output", output_, "Output directory")->default_str("out/compare-<scene>");
+  c.add_option("--font", font_,
+               "TrueType font of the contact sheet's labels [default: DejaVu Sans from the "
+               "system's fonts; without one the sheet has no labels]");
   c.add_flag("-q,--quiet", quiet_, "No progress output");
 }
 
@@ -121,22 +159,24 @@ int CompareCommand::run() const {
   if (scene.name.empty()) scene.name = "scene";  // render() stamps it on every film
   const std::string& name = scene.name;
   const fs::path dir = output_.empty() ? fs::path("out") / ("compare-" + name) : fs::path(output_);
-  fs::create_directories(dir);
+  // Everything that can be wrong with the inputs is found before the first sample.
+  Film reference;
+  if (!reference_.empty()) reference = read_reference(reference_, scene);
+  const std::optional<fs::path> font = label_font(font_, quiet_);
+  const fs::path sheet_file = dir / "contact-sheet.png";
+  check_destination(sheet_file, 0);
 
   RenderOptions base;
   base.threads = capped_threads(threads_);
   base.seed = seed_;
   base.max_depth = scene.render.max_depth;
 
-  Film reference;
-  if (!reference_.empty()) {
-    reference = read_exr(reference_);
-  } else {
+  if (reference_.empty()) {
     RenderOptions ro = base;
     ro.integrator = reference_integrator_;
     ro.spp = reference_spp_;
     ro.seed = seed_ + kReferenceSeedOffset;
-    RenderResult r = render_logged(scene, ro, quiet_, "reference");
+    RenderResult r = render_shown(scene, ro, quiet_, "reference " + ro.integrator);
     reference = std::move(r.film);
     write_exr(reference, (dir / "reference.exr").string());
   }
@@ -148,30 +188,45 @@ int CompareCommand::run() const {
     if (spp_ > 0) {
       o.spp = spp_;
     } else {
-      o.spp = equal_time_spp(scene, o, seconds_, quiet_);
+      const EqualTimePlan plan =
+          plan_equal_time(seconds_, seconds_per_spp(scene, o, seconds_, quiet_));
+      o.spp = plan.max_spp;
+      o.samples_per_unit = plan.samples_per_unit;
+      o.time_seconds = plan.time_seconds;
     }
-    RenderResult r = render_logged(scene, o, quiet_, "render");
+    RenderResult r = render_shown(scene, o, quiet_, integrator);
     Entry e;
     e.integrator = integrator;
     e.film = std::move(r.film);
     e.stats = r.stats;
-    e.spp = o.spp;
+    e.spp = e.film.meta.min_spp;
+    e.samples_per_round = o.samples_per_unit;
     e.error = image_error(e.film, reference);
     e.efficiency = e.error.relative_mse > 0 ? 1.0 / (e.error.relative_mse * e.stats.seconds) : 0;
     e.efficiency_trimmed = e.error.relative_mse_trimmed > 0
                                ? 1.0 / (e.error.relative_mse_trimmed * e.stats.seconds)
                                : 0;
+    if (spp_ == 0 && !within_budget(e.stats.seconds, seconds_)) {
+      std::fprintf(stderr,
+                   "warning: %s took %.2f s of its %g s budget, more than %.0f%% off (a round of "
+                   "%d spp took %.2f s; other work on the machine changes the time too)\n",
+                   integrator.c_str(), e.stats.seconds, seconds_, 100 * kBudgetTolerance,
+                   o.samples_per_unit,
+                   e.spp > 0 ? e.stats.sampling_seconds * o.samples_per_unit / e.spp : 0.0);
+    }
     write_exr(e.film, (dir / (integrator + ".exr")).string());
     entries.push_back(std::move(e));
   }
 
   const double baseline = entries.front().efficiency;
   const double baseline_trimmed = entries.front().efficiency_trimmed;
+  const bool equal_time = spp_ == 0;
   nlohmann::ordered_json report = {
       {"scene", name},
       {"resolution", {reference.width, reference.height}},
-      {"mode", spp_ > 0 ? "equal-spp" : "equal-time"},
-      {"budget_seconds", spp_ > 0 ? 0.0 : seconds_},
+      {"mode", equal_time ? "equal-time" : "equal-spp"},
+      {"budget_seconds", equal_time ? seconds_ : 0.0},
+      {"budget_tolerance", kBudgetTolerance},
       {"reference",
        {{"file", reference_.empty() ? (dir / "reference.exr").string() : reference_},
         {"spp", reference.meta.spp},
@@ -180,34 +235,46 @@ int CompareCommand::run() const {
       {"integrators", nlohmann::ordered_json::array()}};
   std::printf("%-6s %8s %9s %12s %12s %12s %10s %10s\n", "integ.", "spp", "seconds", "relMSE",
               "trimmed", "efficiency", "vs first", "(trimmed)");
-  std::vector<const Film*> films;
-  std::vector<Film> errors;
+  std::vector<SheetRender> sheet_renders;
   for (const Entry& e : entries) {
     const double ratio = baseline > 0 ? e.efficiency / baseline : 0;
     const double ratio_trimmed = baseline_trimmed > 0 ? e.efficiency_trimmed / baseline_trimmed : 0;
     std::printf("%-6s %8d %9.2f %12.4e %12.4e %12.4e %10.3f %10.3f\n", e.integrator.c_str(), e.spp,
                 e.stats.seconds, e.error.relative_mse, e.error.relative_mse_trimmed, e.efficiency,
                 ratio, ratio_trimmed);
-    report["integrators"].push_back({{"name", e.integrator},
-                                     {"spp", e.spp},
-                                     {"seconds", e.stats.seconds},
-                                     {"relative_mse", e.error.relative_mse},
-                                     {"relative_mse_raw", e.error.relative_mse_raw},
-                                     {"reference_noise", e.error.reference_noise},
-                                     {"relative_mse_trimmed", e.error.relative_mse_trimmed},
-                                     {"efficiency_trimmed", e.efficiency_trimmed},
-                                     {"efficiency_trimmed_vs_first", ratio_trimmed},
-                                     {"efficiency", e.efficiency},
-                                     {"efficiency_vs_first", ratio},
-                                     {"mrays_per_second", e.stats.mrays_per_second()},
-                                     {"file", (dir / (e.integrator + ".exr")).string()}});
-    films.push_back(&e.film);
-    errors.push_back(error_image(e.film, reference));
+    nlohmann::ordered_json entry = {{"name", e.integrator},
+                                    {"spp", e.spp},
+                                    {"seconds", e.stats.seconds},
+                                    {"sampling_seconds", e.stats.sampling_seconds}};
+    if (equal_time) {
+      entry["samples_per_round"] = e.samples_per_round;
+      entry["budget_share"] = e.stats.seconds / seconds_;
+      entry["within_budget"] = within_budget(e.stats.seconds, seconds_);
+    }
+    entry.update(nlohmann::ordered_json{{"relative_mse", e.error.relative_mse},
+                                        {"relative_mse_raw", e.error.relative_mse_raw},
+                                        {"reference_noise", e.error.reference_noise},
+                                        {"relative_mse_trimmed", e.error.relative_mse_trimmed},
+                                        {"efficiency_trimmed", e.efficiency_trimmed},
+                                        {"efficiency_trimmed_vs_first", ratio_trimmed},
+                                        {"efficiency", e.efficiency},
+                                        {"efficiency_vs_first", ratio},
+                                        {"mrays_per_second", e.stats.mrays_per_second()},
+                                        {"file", (dir / (e.integrator + ".exr")).string()}});
+    report["integrators"].push_back(std::move(entry));
+    sheet_renders.push_back({e.integrator, &e.film, error_image(e.film, reference), e.spp,
+                             e.stats.seconds, e.error.relative_mse});
   }
-  const fs::path sheet = dir / "contact-sheet.png";
-  write_preview(contact_sheet(reference, films, errors), sheet.string());
+  const std::string reference_text = "reference: " + reference.meta.integrator + ", " +
+                                     std::to_string(reference.meta.spp) + " spp";
+  const ContactSheet sheet = contact_sheet(reference, reference_text, sheet_renders);
+  write_labelled_preview(sheet.image, sheet.labels, font, sheet_file);
+  report["contact_sheet"] = {{"file", sheet_file.string()},
+                             {"labels", font.has_value()},
+                             {"font", font ? font->string() : ""},
+                             {"zoom", sheet.zoom}};
   write_json_file(report, (dir / "compare.json").string());
-  std::printf("wrote %s\nwrote %s\n", sheet.c_str(), (dir / "compare.json").c_str());
+  std::printf("wrote %s\nwrote %s\n", sheet_file.c_str(), (dir / "compare.json").c_str());
   return 0;
 }
 

@@ -32,6 +32,7 @@ class CompareCommand {
   int threads_ = 0;
   uint32_t seed_ = 1;
   std::string output_;
+  std::string font_;
   bool quiet_ = false;
 };
 

@@ -1,19 +1,41 @@
-// The picture `snee compare` writes: the paper's split view and the error maps in one image.
+// The picture `snee compare` writes: the paper's split view and the error maps in one image,
+// each tile labelled, with the error maps' colour scale below them.
 //   top row:    [left half: first render | right half: second render]  [reference]
 //   bottom row: [error map of each render, in the order given]
-// Tiles are separated by a grey gutter; the layout is fixed so the image needs no labels (the
-// compare JSON names the renders in order).
+//   colour bar: the error scale of apps/image_error.h, a tick and a label per decade
+// Under every tile a strip holds two lines of text (which render, its spp and time, its
+// error). Images narrower than kMinSheetTileWidth are enlarged by a whole factor, pixel by
+// pixel, so the labels fit and the noise stays visible as it is.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include "apps/labelled_preview.h"
 #include "scene/film.h"
 
 namespace snee {
 
-// renders: at least one, all of the reference's size; with one render the top-left tile is
-// that render alone. errors: one per render (apps/image_error.h).
-Film contact_sheet(const Film& reference, const std::vector<const Film*>& renders,
-                   const std::vector<Film>& errors);
+inline constexpr int kMinSheetTileWidth = 200;
+
+struct SheetRender {
+  std::string name;
+  const Film* film = nullptr;  // the reference's size
+  Film error;                  // apps/image_error.h error_image
+  int spp = 0;
+  double seconds = 0;
+  double relative_mse = 0;
+};
+
+struct ContactSheet {
+  Film image;  // linear radiance, labels not drawn
+  std::vector<TextLabel> labels;
+  int zoom = 1;  // how many sheet pixels wide and high one image pixel is
+};
+
+// renders: at least one; with one the split view is that render alone. reference_text
+// describes the reference (e.g. "reference: snee, 1024 spp").
+ContactSheet contact_sheet(const Film& reference, const std::string& reference_text,
+                           const std::vector<SheetRender>& renders);
 
 }  // namespace snee

@@ -80,6 +80,12 @@ ImageError image_error(const Film& render, const Film& reference) {
   return e;
 }
 
+Rgb error_colour(double squared_relative_error) {
+  constexpr double kLowest = kErrorMapLowestDecade, kHighest = kErrorMapHighestDecade;
+  const double decade = std::log10(std::max(squared_relative_error, std::pow(10.0, kLowest)));
+  return ramp(static_cast<float>((decade - kLowest) / (kHighest - kLowest)));
+}
+
 Film error_image(const Film& render, const Film& reference) {
   check_sizes(render, reference);
   Film out;
@@ -89,8 +95,7 @@ Film error_image(const Film& render, const Film& reference) {
   for (size_t i = 0; i < render.mean.size(); ++i) {
     double e = 0;
     for (int c = 0; c < 3; ++c) e += squared_relative_error(render, reference, i, c) / 3.0;
-    const double decades = std::log10(std::max(e, 1e-4));  // -4 .. 2
-    out.mean[i] = ramp(static_cast<float>((decades + 4.0) / 6.0));
+    out.mean[i] = error_colour(e);
   }
   return out;
 }

@@ -28,9 +28,15 @@ inline constexpr double kRelativeMseFloor = 1e-2;
 // Throws std::invalid_argument when the sizes differ.
 ImageError image_error(const Film& render, const Film& reference);
 
-// Per-pixel relative squared error as an image: log10 of the error from 1e-4 (black) to 1e2
-// (white) through a perceptual ramp (dark blue, magenta, orange, yellow). Linear RGB, so the
-// preview writer's sRGB encoding shows the ramp's intended colours.
+// The false-colour scale of the error maps: log10 of a pixel's relative squared error (the
+// channel mean of (x - ref)^2 / (ref^2 + kRelativeMseFloor)) from kErrorMapLowest (black) to
+// kErrorMapHighest (white) through a perceptual ramp (dark blue, magenta, orange, yellow).
+// Linear RGB, so the preview writer's sRGB encoding shows the ramp's intended colours.
+inline constexpr int kErrorMapLowestDecade = -4;
+inline constexpr int kErrorMapHighestDecade = 2;
+Rgb error_colour(double squared_relative_error);
+
+// Each pixel's error_colour.
 Film error_image(const Film& render, const Film& reference);
 
 }  // namespace snee

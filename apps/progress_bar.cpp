@@ -1,5 +1,6 @@
 #include "apps/progress_bar.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -22,8 +23,10 @@ std::string format_duration(double seconds) {
 
 }  // namespace
 
-ProgressBar::ProgressBar(std::FILE* stream)
+ProgressBar::ProgressBar(std::FILE* stream, std::string label, double time_budget_seconds)
     : stream_(stream),
+      label_(label.empty() ? label : label + ": "),
+      time_budget_seconds_(time_budget_seconds),
       tty_(isatty(fileno(stream)) != 0),
       interval_(tty_ ? std::chrono::milliseconds(250) : std::chrono::seconds(5)) {
   // The first line of a log appears after one interval, not at 0 %.
@@ -38,11 +41,22 @@ void ProgressBar::update(const Progress& progress) {
   if (now - last_print_ < interval_) return;
   last_print_ = now;
 
-  const double f = progress.fraction;
+  const double clock =
+      time_budget_seconds_ > 0 ? std::min(1.0, progress.elapsed_seconds / time_budget_seconds_) : 0;
+  const double f = std::max(progress.fraction, clock);
   const double eta = f > 0 ? progress.elapsed_seconds * (1 - f) / f : -1;
-  std::fprintf(stream_, "%s%5.1f%%  %lld/%lld samples  %.1f Mrays/s  elapsed %s  ETA %s%s",
-               tty_ ? "\r" : "", 100 * f, static_cast<long long>(progress.samples_done),
-               static_cast<long long>(progress.samples_total), progress.mrays_per_second,
+  // Under a time budget the spp is only a cap, so the samples it would take mean little.
+  char samples[64];
+  if (time_budget_seconds_ > 0)
+    std::snprintf(samples, sizeof samples, "%lld samples in a %s budget",
+                  static_cast<long long>(progress.samples_done),
+                  format_duration(time_budget_seconds_).c_str());
+  else
+    std::snprintf(samples, sizeof samples, "%lld/%lld samples",
+                  static_cast<long long>(progress.samples_done),
+                  static_cast<long long>(progress.samples_total));
+  std::fprintf(stream_, "%s%s%5.1f%%  %s  %.1f Mrays/s  elapsed %s  ETA %s%s", tty_ ? "\r" : "",
+               label_.c_str(), 100 * f, samples, progress.mrays_per_second,
                format_duration(progress.elapsed_seconds).c_str(), format_duration(eta).c_str(),
                tty_ ? "\033[K" : "\n");
   std::fflush(stream_);

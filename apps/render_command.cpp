@@ -267,7 +267,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
     if (!stats_.empty()) check_destination(stats_, 0);
   }
 
-  ProgressBar bar(stderr);
+  ProgressBar bar(stderr, {}, options.time_seconds);
   RenderHooks hooks;
   if (shows_progress) hooks.progress = [&bar](const Progress& p) { bar.update(p); };
   if (checkpoint_seconds_ > 0) {

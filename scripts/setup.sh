@@ -10,6 +10,7 @@ packages=(
   libembree-dev libopenimageio-dev libtbb-dev libxsimd-dev xtl-dev nlohmann-json3-dev
   libcli11-dev librandom123-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
+  fonts-dejavu-core
   clang-format
   clang libclang-rt-dev
 )
