@@ -277,12 +277,20 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
         checkpoint_path(resume_, distribution.shard, distribution.shard_count), identity);
   }
   const fs::path state_file = checkpoint_path(exr, distribution.shard, distribution.shard_count);
-  check_destination(state_file, checkpoint_bytes_bound(scene.camera.width, scene.camera.height));
   if (writes) {
     const int w = scene.camera.width, h = scene.camera.height;
     check_destination(exr, exr_bytes_bound(w, h) + view_bytes_bound(w, h));
     check_destination(png, 0);
     if (!stats_.empty()) check_destination(stats_, 0);
+  }
+  // The images are what was asked for; the state (a longer name beside the EXR) only makes a
+  // stop resumable, so a render that cannot keep it still runs, warned.
+  try {
+    check_destination(state_file, checkpoint_bytes_bound(scene.camera.width, scene.camera.height));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr,
+                 "warning: the render's state cannot be kept, a stop cannot be resumed: %s\n",
+                 e.what());
   }
 
   ProgressBar bar(stderr);
