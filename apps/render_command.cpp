@@ -5,9 +5,13 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
+#include "apps/checkpoint_file.h"
 #include "apps/interrupt_request.h"
 #include "apps/option_checks.h"
 #include "apps/output_files.h"
@@ -120,10 +124,17 @@ RenderCommand::RenderCommand(CLI::App& parent)
                "unit) or global (each stage over many units)")
       ->check(CLI::IsMember({"megakernel", "local", "global"}))
       ->capture_default_str();
-  c.add_option("--checkpoint", checkpoint_seconds_,
-               "Also write the image so far every SECONDS while rendering (0: only at the end)")
+  c.add_option(
+       "--checkpoint", checkpoint_seconds_,
+       "Also write the image so far, and the render's state beside it (FILE.exr.checkpoint, "
+       "which --resume goes on from), every SECONDS while rendering (0: only at the end); "
+       "split across processes, each writes its state only")
       ->check(finite_at_least(0))
       ->capture_default_str();
+  c.add_option("--resume", resume_,
+               "Go on with the render whose EXR is FILE from the state beside it "
+               "(FILE.checkpoint): same scene and options, any thread count; the image is "
+               "bitwise the uninterrupted render's. -o defaults to FILE (docs/resume.md)");
   c.add_option("--time", options_.time_seconds,
                "Stop after about SECONDS: once they have passed no new round (--samples-per-unit "
                "samples of every pixel) starts, so every pixel holds whole rounds "
@@ -230,10 +241,6 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   options.threads = capped_threads(options.threads);
   options.shard = distribution.shard;
   options.shard_count = distribution.shard_count;
-  // A checkpoint would need every process at once; interrupts still keep what each has done.
-  if (distribution.shard_count > 1 && checkpoint_seconds_ > 0)
-    throw std::invalid_argument(
-        "--checkpoint is not available when the render is split across processes");
   // Each process would read its own clock and stop at its own round.
   if (distribution.shard_count > 1 && options.time_seconds > 0)
     throw std::invalid_argument(
@@ -251,8 +258,11 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
 
   const std::string name = output_name(scene, scene_);
   scene.name = name;  // render() stamps it on the film and on every checkpoint
-  OutputImages images =
-      output_images(output_.empty() ? fs::path("out") / (name + ".exr") : fs::path(output_));
+  // A resumed render goes on writing the files it continues, unless told otherwise.
+  const fs::path output = !output_.empty()   ? fs::path(output_)
+                          : !resume_.empty() ? fs::path(resume_)
+                                             : fs::path("out") / (name + ".exr");
+  OutputImages images = output_images(output);
   images.tone = preview_tone();
   images.attributes = render_settings_attributes(scene_, loaded, options, images.tone);
   const fs::path& exr = images.exr;
@@ -260,28 +270,52 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   // Only the process that writes checks, before any sampling, so a bad destination costs
   // nothing; each check leaves the directory it needs in place.
   const bool writes = distribution.shard == 0;
+  const CheckpointIdentity identity = checkpoint_identity(scene_, loaded, options);
+  std::optional<FilmState> resumed;
+  if (!resume_.empty()) {
+    resumed = read_checkpoint(
+        checkpoint_path(resume_, distribution.shard, distribution.shard_count), identity);
+  }
+  const fs::path state_file = checkpoint_path(exr, distribution.shard, distribution.shard_count);
   if (writes) {
     const int w = scene.camera.width, h = scene.camera.height;
     check_destination(exr, exr_bytes_bound(w, h) + view_bytes_bound(w, h));
     check_destination(png, 0);
     if (!stats_.empty()) check_destination(stats_, 0);
   }
+  // The images are what was asked for; the state (a longer name beside the EXR) only makes a
+  // stop resumable, so a render that cannot keep it still runs, warned.
+  try {
+    check_destination(state_file, checkpoint_bytes_bound(scene.camera.width, scene.camera.height));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr,
+                 "warning: the render's state cannot be kept, a stop cannot be resumed: %s\n",
+                 e.what());
+  }
 
   ProgressBar bar(stderr, {}, options.time_seconds);
   RenderHooks hooks;
   if (shows_progress) hooks.progress = [&bar](const Progress& p) { bar.update(p); };
-  if (checkpoint_seconds_ > 0) {
-    hooks.checkpoint_seconds = checkpoint_seconds_;
-    // A failed checkpoint (disk full, directory removed) loses no samples: the render goes
-    // on and the next checkpoint tries again; only the final write decides the exit code.
+  // A failed checkpoint (disk full, directory removed) loses no samples: the render goes
+  // on and the next checkpoint tries again; only the final write decides the exit code.
+  const auto checkpoint_or_warn = [](const std::function<void()>& write) {
+    try {
+      write();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "warning: checkpoint not written, rendering goes on: %s\n", e.what());
+    }
+  };
+  hooks.checkpoint_seconds = checkpoint_seconds_;
+  // One process of a split render holds only its shard's pixels: it keeps its state alone.
+  if (checkpoint_seconds_ > 0 && distribution.shard_count == 1) {
     hooks.checkpoint = [&](const Film& film) {
-      try {
-        write_images(film, images);
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "warning: checkpoint not written, rendering goes on: %s\n", e.what());
-      }
+      checkpoint_or_warn([&] { write_images(film, images); });
     };
   }
+  // Also set without --checkpoint: a stopped render keeps its final state (RenderResult).
+  hooks.checkpoint_state = [&](const FilmState& state) {
+    checkpoint_or_warn([&] { write_checkpoint(state_file, identity, state); });
+  };
   const InterruptRequest interrupt;
   hooks.stop_requested = [&] {
     const bool here = interrupt.requested();
@@ -291,7 +325,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   };
   RenderResult result;
   try {
-    result = render(scene, options, hooks);
+    result = render(scene, options, hooks, resumed ? &*resumed : nullptr);
   } catch (const std::invalid_argument& e) {
     bar.finish();
     throw std::invalid_argument("cannot render '" + name + "' with integrator '" +
@@ -300,6 +334,20 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   bar.finish();
   // An image cut short without a signal here was cut short elsewhere (or failed): never 0.
   int exit_status = result.complete ? 0 : std::max(1, interrupt.exit_status());
+  // Every process keeps its own state, before the join. A complete render keeps it only when
+  // asked to checkpoint or resumed (so that it can be taken further, to a larger spp); else a
+  // state left by an earlier stopped render of this EXR is gone with the EXR it belonged to.
+  if (!result.complete || checkpoint_seconds_ > 0 || resumed) {
+    try {
+      write_checkpoint(state_file, identity, *result.state);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "warning: the render's state was not kept, it cannot be resumed: %s\n",
+                   e.what());
+    }
+  } else {
+    std::error_code ignored;
+    fs::remove(state_file, ignored);
+  }
   if (distribution.join && !distribution.join(result, exit_status)) return exit_status;
 
   warn_about_nonfinite_samples(result.stats);

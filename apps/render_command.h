@@ -47,6 +47,7 @@ class RenderCommand {
   std::string stats_;
   std::string resolution_;
   double checkpoint_seconds_ = 0;
+  std::string resume_;  // the EXR whose checkpoint state the render goes on from
   bool quiet_ = false;
   std::string snee_probe_ = "uniform";
   std::string snee_heuristic_ = "balance";

@@ -30,13 +30,6 @@ std::string read_bytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-std::string scene_hash(const std::string& spec, const LoadedScene& loaded) {
-  if (spec.starts_with("builtin:"))
-    return "fnv1a64:" + fnv1a64_hex(loaded.canonical.dump()) +
-           " of the built-in scene's canonical JSON";
-  return "fnv1a64:" + fnv1a64_hex(read_bytes(spec)) + " of the bytes of " + spec;
-}
-
 std::string format_float(double value) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", value);
@@ -54,6 +47,11 @@ std::string fnv1a64_hex(std::string_view bytes) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
+}
+
+std::string scene_digest(const std::string& spec, const LoadedScene& loaded) {
+  return "fnv1a64:" +
+         fnv1a64_hex(spec.starts_with("builtin:") ? loaded.canonical.dump() : read_bytes(spec));
 }
 
 std::string command_line() {
@@ -93,7 +91,10 @@ ExrAttributes render_settings_attributes(const std::string& scene_spec, const Lo
           : "off";
   return {
       {"snee:command_line", command_line()},
-      {"snee:scene_hash", scene_hash(scene_spec, loaded)},
+      {"snee:scene_hash",
+       scene_digest(scene_spec, loaded) + (scene_spec.starts_with("builtin:")
+                                               ? " of the built-in scene's canonical JSON"
+                                               : " of the bytes of " + scene_spec)},
       {"snee:render_options", render_options.dump()},
       {"snee:sample_clamp", clamp},
       {"snee:build_simd",

@@ -17,6 +17,9 @@ namespace snee {
 // versions apart, it does not authenticate them.
 std::string fnv1a64_hex(std::string_view bytes);
 
+// "fnv1a64:HEX" of a scene file's bytes, or of a built-in scene's canonical JSON document.
+std::string scene_digest(const std::string& scene_spec, const LoadedScene& loaded);
+
 // This process's command line, arguments joined by spaces, each with a space, quote or
 // backslash in it single-quoted (read from /proc/self/cmdline; empty where there is none).
 std::string command_line();

@@ -1,6 +1,8 @@
 #include "scheduler/film_accumulator.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "scheduler/noise_target.h"
 
@@ -54,7 +56,7 @@ void FilmAccumulator::add(size_t unit) {
 bool FilmAccumulator::wants(size_t unit) const {
   Tile& tile = tiles_[grid_.tile_of(unit)];
   std::lock_guard<std::mutex> lock(tile.mutex);
-  return !tile.converged;
+  return !tile.converged && grid_.chunk_of(unit) >= tile.next_chunk;
 }
 
 bool FilmAccumulator::tiles_done(uint32_t chunks) const {
@@ -147,6 +149,58 @@ Film FilmAccumulator::resolve(const FilmMetadata& meta) const {
   film.meta.spp = static_cast<int>(grid_.spp());
   film.meta.min_spp = static_cast<int>(min_spp);
   return film;
+}
+
+FilmState FilmAccumulator::state() const {
+  FilmState state;
+  state.tiles.resize(grid_.tile_count());
+  state.sums.reserve(kSumsPerPixel * sum_.size() / 3);
+  for (size_t t = 0; t < grid_.tile_count(); ++t) {
+    Tile& tile = tiles_[t];
+    std::lock_guard<std::mutex> lock(tile.mutex);
+    state.tiles[t] = {tile.next_chunk, tile.converged};
+    const WorkUnit u = grid_.unit(t);
+    for (int y = u.y0; y < u.y1; ++y) {
+      for (int x = u.x0; x < u.x1; ++x) {
+        const size_t p = 3 * (static_cast<size_t>(y) * width_ + x);
+        state.sums.insert(state.sums.end(), sum_.begin() + p, sum_.begin() + p + 3);
+        state.sums.insert(state.sums.end(), sum_sq_.begin() + p, sum_sq_.begin() + p + 3);
+      }
+    }
+  }
+  return state;
+}
+
+void FilmAccumulator::restore(const FilmState& state) {
+  if (state.tiles.size() != grid_.tile_count())
+    throw std::invalid_argument("the state has " + std::to_string(state.tiles.size()) +
+                                " tiles, the render " + std::to_string(grid_.tile_count()));
+  size_t pixels = 0;
+  for (size_t t = 0; t < grid_.tile_count(); ++t)
+    pixels += static_cast<size_t>(grid_.unit(t).pixel_count());
+  if (state.sums.size() != kSumsPerPixel * pixels)
+    throw std::invalid_argument("the state has " + std::to_string(state.sums.size()) +
+                                " sums, the render's tiles need " +
+                                std::to_string(kSumsPerPixel * pixels));
+  const double* sums = state.sums.data();
+  for (size_t t = 0; t < grid_.tile_count(); ++t) {
+    if (state.tiles[t].chunks > grid_.chunk_count())
+      throw std::invalid_argument("tile " + std::to_string(t) + " of the state holds " +
+                                  std::to_string(state.tiles[t].chunks) +
+                                  " chunks, the render has " + std::to_string(grid_.chunk_count()));
+    Tile& tile = tiles_[t];
+    std::lock_guard<std::mutex> lock(tile.mutex);
+    tile.next_chunk = state.tiles[t].chunks;
+    tile.converged = state.tiles[t].converged;
+    const WorkUnit u = grid_.unit(t);
+    for (int y = u.y0; y < u.y1; ++y) {
+      for (int x = u.x0; x < u.x1; ++x, sums += kSumsPerPixel) {
+        const size_t p = 3 * (static_cast<size_t>(y) * width_ + x);
+        std::copy(sums, sums + 3, sum_.begin() + p);
+        std::copy(sums + 3, sums + 6, sum_sq_.begin() + p);
+      }
+    }
+  }
 }
 
 }  // namespace snee

@@ -14,6 +14,7 @@
 
 #include "scene/film.h"
 #include "scene/math.h"
+#include "scheduler/film_state.h"
 #include "scheduler/unit_grid.h"
 
 namespace snee {
@@ -31,7 +32,8 @@ class FilmAccumulator {
   // Unit k has finished writing its buffer; adds it (and any parked successors of its tile) to
   // the sums, or parks it. Thread-safe; call it before the window learns the unit finished.
   void add(size_t unit);
-  // Whether unit k's tile still takes samples (it has not met the noise target). Thread-safe.
+  // Whether unit k's tile still takes unit k: it has not met the noise target and does not hold
+  // the unit's chunk already (restored from a checkpoint). Thread-safe.
   bool wants(size_t unit) const;
   // Whether every tile holds its first `chunks` chunks or has met the noise target.
   bool tiles_done(uint32_t chunks) const;
@@ -40,6 +42,14 @@ class FilmAccumulator {
   // is in, that is the image; before, a snapshot in which every pixel is an unbiased estimate
   // with its own sample count (Film::pixel_spp). Thread-safe: locks one tile at a time.
   Film resolve(const FilmMetadata& meta = {}) const;
+  // The exact state of the sums and tiles (film_state.h), its `seconds` left 0. Each tile is
+  // copied under its lock, so every tile is whole; units in flight or parked are not in it
+  // and run again after a resume. Thread-safe.
+  FilmState state() const;
+  // Before any unit is added: takes over `state`'s tiles and sums, so that the render goes on
+  // from them. Throws std::invalid_argument when it does not fit this grid (tile count, sum
+  // count, or a tile holding more chunks than the grid has).
+  void restore(const FilmState& state);
 
  private:
   struct Tile {

@@ -130,7 +130,8 @@ void add_workspace_stats(const UnitWorkspace& ws, KernelCounters& counters, Rend
 
 }  // namespace
 
-RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks) {
+RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks,
+                    const FilmState* resume) {
   validate(scene, options);
   const Integrator integrator = parse_integrator(options.integrator);
   const Schedule schedule = parse_schedule(options.schedule);
@@ -166,14 +167,24 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   const size_t lead = std::max<size_t>(1, std::min(grid.size(), kUnitsInFlightPerThread * threads));
   UnitWindow window(grid.size(), lead);
   FilmAccumulator film_sums(grid, width, height, lead, options.noise_target);
+  uint32_t rounds_begun = 0;
+  double resumed_seconds = 0;
+  if (resume) {
+    film_sums.restore(*resume);
+    for (const TileState& t : resume->tiles) rounds_begun = std::max(rounds_begun, t.chunks);
+    resumed_seconds = resume->seconds;
+  }
   FilmMetadata meta;
   meta.integrator = integrator_name(integrator);
   meta.seed = options.seed;
   meta.scene = scene.name;
   meta.time_budget_seconds = options.time_seconds;
   meta.noise_target = options.noise_target;
-  UnitProgress unit_progress(hooks, grid.sample_count(), start, film_sums, meta);
-  TimeBudget time_budget(options.time_seconds, start);
+  UnitProgress unit_progress(hooks, grid.sample_count(), start, film_sums, meta, resumed_seconds);
+  const auto resumed_start =
+      start - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                  std::chrono::duration<double>(resumed_seconds));
+  TimeBudget time_budget(options.time_seconds, resumed_start, rounds_begun);
   const UnitSource source{grid, window, film_sums, unit_progress, time_budget};
 
   // The megakernel is the same loop over one-slot workspaces: one path at a time per thread.
@@ -194,6 +205,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   });
 
   RenderResult result;
+  if (hooks.checkpoint_state) result.state = unit_progress.state();
   result.film = film_sums.resolve(meta);
   Film& film = result.film;
   // Complete: every tile holds the rounds it was to take, or has met the noise target.

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "kernels/kernel_context.h"
@@ -14,6 +15,7 @@
 #include "scene/film.h"
 #include "scene/memory_budget.h"
 #include "scene/scene.h"
+#include "scheduler/film_state.h"
 
 namespace snee {
 
@@ -82,6 +84,9 @@ struct RenderHooks {
   // The film so far (FilmAccumulator::resolve: each pixel over its own samples, meta.min_spp
   // the fewest), every `checkpoint_seconds` of wall clock; the other workers keep rendering.
   std::function<void(const Film&)> checkpoint;
+  // The film's exact state (film_state.h) at the same moments as `checkpoint`: what a later
+  // render resumes from. Setting it also fills RenderResult::state.
+  std::function<void(const FilmState&)> checkpoint_state;
   double checkpoint_seconds = 0;
   // Asked after every finished unit and between turns of every unit's stage loop, so keep it
   // cheap (an atomic load). Once it says true, no unit starts, the units in flight are
@@ -118,12 +123,19 @@ struct RenderResult {
   // The time budget stopped the render before spp: every tile that had not met the noise
   // target holds the same whole rounds (film.meta.min_spp samples).
   bool time_budget_spent = false;
+  // The film's exact state once the units are done, when RenderHooks::checkpoint_state is set.
+  std::optional<FilmState> state;
 };
 
 // Throws std::invalid_argument for an unknown integrator or invalid options, and when the render
 // would need more memory than options.memory_budget. What a hook throws aborts the render and
-// propagates, so a caller that wants to go on catches it there.
-RenderResult render(const Scene& scene, const RenderOptions& options,
-                    const RenderHooks& hooks = {});
+// propagates, so a caller that wants to go on catches it there. With `resume` (a state that a
+// render of the same scene and image-shaping options left, RenderHooks::checkpoint_state) the
+// render goes on from it: the units its tiles hold are skipped, and the film ends bitwise the
+// one the uninterrupted render makes. Its spp may be larger than the state's render's, when
+// that one's chunks were all whole; checking that the state belongs to this render is the
+// caller's (the app's checkpoint file records what made it), only its shape is checked here.
+RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks = {},
+                    const FilmState* resume = nullptr);
 
 }  // namespace snee

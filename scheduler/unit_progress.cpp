@@ -4,8 +4,19 @@ namespace snee {
 
 UnitProgress::UnitProgress(const RenderHooks& hooks, int64_t samples_total,
                            std::chrono::steady_clock::time_point start, const FilmAccumulator& film,
-                           const FilmMetadata& meta)
-    : hooks_(hooks), samples_total_(samples_total), start_(start), film_(film), meta_(meta) {}
+                           const FilmMetadata& meta, double resumed_seconds)
+    : hooks_(hooks),
+      samples_total_(samples_total),
+      start_(start),
+      film_(film),
+      meta_(meta),
+      resumed_seconds_(resumed_seconds) {}
+
+FilmState UnitProgress::state() const {
+  FilmState state = film_.state();
+  state.seconds = resumed_seconds_ + elapsed_seconds();
+  return state;
+}
 
 double UnitProgress::elapsed_seconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -15,7 +26,8 @@ bool UnitProgress::unit_finished(const UnitWorkspace& ws) {
   const uint64_t rays = rays_done_ += rays_traced(ws.counters) - ws.rays_at_start;
   nonfinite_done_ += ws.counters.nonfinite_samples - ws.nonfinite_at_start;
   report(samples_done_ += static_cast<int64_t>(ws.unit->sample_count()), rays);
-  if (hooks_.checkpoint && hooks_.checkpoint_seconds > 0) checkpoint_if_due();
+  if ((hooks_.checkpoint || hooks_.checkpoint_state) && hooks_.checkpoint_seconds > 0)
+    checkpoint_if_due();
   return !stop_requested();
 }
 
@@ -51,7 +63,8 @@ void UnitProgress::checkpoint_if_due() {
   FilmMetadata meta = meta_;
   meta.render_seconds = now;
   meta.nonfinite_samples = nonfinite_done_.load();
-  hooks_.checkpoint(film_.resolve(meta));
+  if (hooks_.checkpoint) hooks_.checkpoint(film_.resolve(meta));
+  if (hooks_.checkpoint_state) hooks_.checkpoint_state(state());
 }
 
 }  // namespace snee

@@ -16,10 +16,13 @@ namespace snee {
 
 class UnitProgress {
  public:
-  // `meta` is stamped on every checkpoint, with the time so far.
+  // `meta` is stamped on every checkpoint, with the time so far; the state of every
+  // checkpoint counts `resumed_seconds` (those of the runs a resumed render continues) too.
   UnitProgress(const RenderHooks& hooks, int64_t samples_total,
                std::chrono::steady_clock::time_point start, const FilmAccumulator& film,
-               const FilmMetadata& meta);
+               const FilmMetadata& meta, double resumed_seconds = 0);
+  // The film's exact state now (RenderHooks::checkpoint_state), with the seconds so far.
+  FilmState state() const;
   // `ws` has just finished its current unit and the film holds it. Returns false once the
   // caller asked to stop. Thread-safe.
   bool unit_finished(const UnitWorkspace& ws);
@@ -39,6 +42,7 @@ class UnitProgress {
   const std::chrono::steady_clock::time_point start_;
   const FilmAccumulator& film_;
   const FilmMetadata meta_;
+  const double resumed_seconds_;
   std::atomic<int64_t> samples_done_{0};
   std::atomic<uint64_t> rays_done_{0};
   std::atomic<uint64_t> nonfinite_done_{0};  // stamped on checkpoints

@@ -120,6 +120,35 @@ TEST_F(MpiSignals, AStoppedRankHoldsNoOtherForEver) {
       << two.run.output();
 }
 
+// Every rank keeps its own state beside the EXR (FILE.exr.checkpoint.R-of-N, docs/resume.md):
+// after one rank is killed with SIGKILL, which ends the job, the render resumed under as many
+// ranks writes the image the single-process uninterrupted render writes.
+TEST_F(MpiSignals, AKilledJobResumesToTheSingleProcessImage) {
+  const std::string exr = (dir_ / "k.exr").string();
+  const std::string common = " render builtin:default --resolution 32x24 --spp 800 --quiet ";
+  {
+    TwoRanks two(dir_, {"--spp", "800", "--checkpoint", "0.05", "-o", exr});
+    ASSERT_TRUE(two.ready) << two.run.output();
+    ASSERT_TRUE(test::wait_for([&] {
+      return fs::exists(exr + ".checkpoint.0-of-2") && fs::exists(exr + ".checkpoint.1-of-2");
+    })) << two.run.output();
+    ASSERT_EQ(kill(two.ranks.front(), SIGKILL), 0);
+    EXPECT_NE(two.run.wait(std::chrono::seconds(120)), 0) << two.run.output();
+  }
+  const std::string mpirun = "'" + kMpirun + "' --allow-run-as-root --oversubscribe -np 2 ";
+  ASSERT_EQ(
+      run_command(mpirun + "'" SNEE_MPI_BINARY "'" + common + "--threads 1 --resume '" + exr + "'",
+                  dir_ / "resume.txt"),
+      0)
+      << read_text_file(dir_ / "resume.txt");
+  const std::string one = (dir_ / "one.exr").string();
+  ASSERT_EQ(
+      run_command("'" SNEE_BINARY "'" + common + "--threads 2 -o '" + one + "'", dir_ / "one.txt"),
+      0)
+      << read_text_file(dir_ / "one.txt");
+  EXPECT_TRUE(test::bitwise_identical(read_exr(one), read_exr(exr)));
+}
+
 TEST(MpiCli, NonFiniteJoinTimeoutIsRejected) {
   const fs::path log = fs::temp_directory_path() / "snee_mpi_join_timeout.txt";
   for (const char* value : {"nan", "inf"}) {
