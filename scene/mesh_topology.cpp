@@ -1,5 +1,8 @@
 #include "scene/mesh_topology.h"
 
+#include <map>
+#include <tuple>
+
 #include <algorithm>
 #include <cstdint>
 #include <utility>
@@ -52,6 +55,20 @@ void flip_winding(TriangleMesh& mesh) {
   }
 }
 
+TriangleMesh welded_by_position(const TriangleMesh& mesh) {
+  std::map<std::tuple<float, float, float>, uint32_t> first;
+  std::vector<uint32_t> renumbered(mesh.positions.size());
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const Vec3 p = mesh.positions[i];
+    renumbered[i] = first.try_emplace({p.x, p.y, p.z}, static_cast<uint32_t>(i)).first->second;
+  }
+  TriangleMesh welded;
+  welded.positions = mesh.positions;
+  welded.indices.reserve(mesh.indices.size());
+  for (const uint32_t index : mesh.indices) welded.indices.push_back(renumbered[index]);
+  return welded;
+}
+
 Transform normalizing_transform(const TriangleMesh& mesh) {
   Vec3 lo(kInfinity), hi(-kInfinity);
   for (const Vec3& p : mesh.positions) {
@@ -67,6 +84,15 @@ Transform normalizing_transform(const TriangleMesh& mesh) {
 
 void apply_transform(const Transform& transform, TriangleMesh& mesh) {
   for (Vec3& p : mesh.positions) p = transform.point(p);
+  // Normals go by the inverse transpose of the linear part, which is its cofactor matrix over
+  // the determinant; the cofactor columns are cross products of the matrix's columns.
+  const Vec3 c0(transform.m[0][0], transform.m[1][0], transform.m[2][0]);
+  const Vec3 c1(transform.m[0][1], transform.m[1][1], transform.m[2][1]);
+  const Vec3 c2(transform.m[0][2], transform.m[1][2], transform.m[2][2]);
+  const float sign = transform.determinant() < 0 ? -1.0f : 1.0f;
+  for (Vec3& n : mesh.normals) {
+    n = normalize((cross(c1, c2) * n.x + cross(c2, c0) * n.y + cross(c0, c1) * n.z) * sign);
+  }
 }
 
 }  // namespace snee

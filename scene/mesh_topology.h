@@ -24,6 +24,11 @@ double signed_volume(const TriangleMesh& mesh);
 
 void flip_winding(TriangleMesh& mesh);
 
+// The mesh's positions and triangles with every vertex number replaced by the first vertex at
+// the same position (no normals or texture coordinates), for count_edges on meshes whose
+// vertices are split where their normals or texture coordinates differ.
+TriangleMesh welded_by_position(const TriangleMesh& mesh);
+
 // Moves the centre of the bounding box to the origin and scales so that the smallest sphere
 // about that centre holding every vertex has radius 1.
 Transform normalizing_transform(const TriangleMesh& mesh);

@@ -55,10 +55,18 @@ struct Medium {
   Rgb sigma_t() const { return sigma_s + sigma_a; }
 };
 
+struct Uv {
+  float u = 0, v = 0;
+};
+
 // World-space triangle mesh with outward-facing winding (counter-clockwise seen from outside).
+// Normals and texture coordinates, where the file has them, are one per position; they are kept
+// for smooth shading and textures, which the kernels do not use yet (shading is flat).
 struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<uint32_t> indices;  // 3 per triangle
+  std::vector<Vec3> normals;      // empty or positions.size(), unit, world space
+  std::vector<Uv> uvs;            // empty or positions.size()
   size_t triangle_count() const { return indices.size() / 3; }
 };
 

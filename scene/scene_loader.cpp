@@ -6,6 +6,7 @@
 #include <map>
 
 #include "scene/env_image_io.h"
+#include "scene/gltf_reader.h"
 #include "scene/input_file.h"
 #include "scene/json_reader.h"
 #include "scene/mesh_io.h"
@@ -170,12 +171,12 @@ class SceneReader {
 
   LoadedScene read(const json& doc) {
     const JsonValue root(doc, "", origin_);
-    const JsonObject top =
-        root.object({"name", "camera", "render", "materials", "media", "shapes", "lights"});
+    const JsonObject top = root.object(
+        {"name", "camera", "render", "materials", "media", "shapes", "lights", "include"});
     Scene& scene = out_.scene;
     scene.name =
         top.has("name") ? top.required("name").string() : fs::path(origin_).stem().string();
-    read_camera(top.required("camera"));
+    if (auto camera = top.optional("camera")) read_camera(*camera);
     if (auto render = top.optional("render")) read_render(*render);
     if (auto materials = top.optional("materials")) {
       for (const JsonValue& m : materials->array()) add_material(m, true);
@@ -186,8 +187,27 @@ class SceneReader {
     if (auto lights = top.optional("lights")) {
       for (const JsonValue& l : lights->array()) read_light(l);
     }
-    const std::vector<JsonValue> shapes = top.required("shapes").array();
-    for (const JsonValue& shape : shapes) read_shape(shape);
+    // Included assets come after the listed lights and before the listed shapes, in both the
+    // document as written and its canonical form, so a reload keeps every index.
+    std::optional<Camera> included_camera;
+    if (auto includes = top.optional("include")) {
+      canonical_["include"] = json::array();
+      for (const JsonValue& include : includes->array()) {
+        std::optional<Camera> camera = read_include(include);
+        if (!included_camera) included_camera = camera;
+      }
+    }
+    if (!top.has("camera")) {
+      if (!included_camera) {
+        root.fail("expected a camera: a \"camera\" object, or an included glTF file with one");
+      }
+      scene.camera = *included_camera;
+      canonical_["camera"] = canonical_camera(scene.camera, scene.camera.up);
+    }
+    if (!top.has("shapes") && !top.has("include")) top.required("shapes");
+    if (auto shapes = top.optional("shapes")) {
+      for (const JsonValue& shape : shapes->array()) read_shape(shape);
+    }
     // Area lights come after the listed lights, in shape order, so a reload of the canonical
     // document (which lists only the others) rebuilds the same light list.
     for (size_t i = 0; i < scene.shapes.size(); ++i) {
@@ -270,12 +290,147 @@ class SceneReader {
       camera.width = static_cast<int>(wh[0].integer(1, kMaxImageEdge));
       camera.height = static_cast<int>(wh[1].integer(1, kMaxImageEdge));
     }
-    canonical_["camera"] = {{"type", "pinhole"},
-                            {"position", to_json(camera.position)},
-                            {"look_at", to_json(camera.look_at)},
-                            {"up", to_json(up_as_given)},
-                            {"fov", camera.fov_y_degrees},
-                            {"resolution", json::array({camera.width, camera.height})}};
+    canonical_["camera"] = canonical_camera(camera, up_as_given);
+  }
+
+  static json canonical_camera(const Camera& camera, Vec3 up_as_given) {
+    return {{"type", "pinhole"},
+            {"position", to_json(camera.position)},
+            {"look_at", to_json(camera.look_at)},
+            {"up", to_json(up_as_given)},
+            {"fov", camera.fov_y_degrees},
+            {"resolution", json::array({camera.width, camera.height})}};
+  }
+
+  // A glTF asset placed in the scene: {"file", "transform", "resolution", "materials",
+  // "media"}. "materials" and "media" map a glTF material's name to a snee material or medium
+  // (a defined name or an inline definition; a medium may be null for none) that replaces what
+  // the asset's material gives. Returns the asset's camera, with "resolution" applied.
+  std::optional<Camera> read_include(const JsonValue& value) {
+    const JsonObject obj = value.object({"file", "transform", "resolution", "materials", "media"});
+    const JsonValue file_value = obj.required("file");
+    const ResolvedPath file = resolve(file_value.string());
+    const std::optional<JsonValue> transform_value = obj.optional("transform");
+    const Transform transform = transform_value ? parse_transform(*transform_value) : Transform();
+    GltfAsset asset;
+    try {
+      asset = load_gltf(file.file, transform, budget_);
+    } catch (const SceneError& e) {
+      file_value.fail(e.what());
+    }
+    for (std::string& warning : asset.warnings) out_.warnings.push_back(std::move(warning));
+    json canonical = {{"file", file.canonical}, {"transform", to_json(transform)}};
+
+    // Each glTF material's snee material and medium, by default the asset's own.
+    const std::string prefix = fs::path(file.file).filename().string() + ":";
+    std::vector<int> materials(asset.materials.size(), -1), media(asset.materials.size(), -1);
+    auto override_target = [&](const JsonValue& key_value, const std::string& key) {
+      const int index = find_gltf_material(asset, key);
+      if (index < 0) {
+        std::string names;
+        for (const GltfMaterial& m : asset.materials)
+          names += (names.empty() ? "'" : ", '") + m.name + "'";
+        key_value.fail("the glTF file " + file.file + " has no material named '" + key +
+                       "' (it has " + (names.empty() ? std::string("none") : names) + ")");
+      }
+      return index;
+    };
+    std::vector<bool> medium_overridden(asset.materials.size(), false);
+    for (const char* list : {"materials", "media"}) {
+      const std::optional<JsonValue> overrides = obj.optional(list);
+      if (!overrides) continue;
+      if (!overrides->json().is_object())
+        overrides->expected("an object keyed by glTF material name");
+      json canonical_overrides = json::object();
+      for (const auto& [key, item] : overrides->json().items()) {
+        const JsonValue item_value(item, json_child_path(overrides->path(), key), origin_);
+        const int index = override_target(item_value, key);
+        const bool is_material = std::string(list) == "materials";
+        if (!is_material && item.is_null()) {
+          medium_overridden[index] = true;
+          canonical_overrides[key] = nullptr;
+          continue;
+        }
+        const int target = reference(item_value, is_material);
+        if (is_material) {
+          materials[index] = target;
+          canonical_overrides[key] = out_.scene.materials[target].name;
+        } else {
+          media[index] = target;
+          medium_overridden[index] = true;
+          canonical_overrides[key] = out_.scene.media[target].name;
+        }
+      }
+      canonical[list] = canonical_overrides;
+    }
+    for (size_t i = 0; i < asset.materials.size(); ++i) {
+      GltfMaterial& m = asset.materials[i];
+      if (materials[i] < 0) {
+        m.surface.name = prefix + m.name;
+        out_.scene.materials.push_back(m.surface);
+        materials[i] = static_cast<int>(out_.scene.materials.size() - 1);
+      }
+      if (!medium_overridden[i] && m.interior) {
+        m.interior->name = prefix + m.name;
+        out_.scene.media.push_back(*m.interior);
+        media[i] = static_cast<int>(out_.scene.media.size() - 1);
+      }
+    }
+
+    for (GltfPrimitive& primitive : asset.primitives) {
+      Shape shape;
+      shape.name = primitive.name;
+      shape.source = file.file + ": " + primitive.element;
+      shape.mesh = std::move(primitive.mesh);
+      check_mesh_coordinates(shape.mesh, value, shape.source);
+      // glTF splits vertices where normals or texture coordinates differ, so whether the
+      // surface is closed is asked of the positions, not of the vertex numbers.
+      const EdgeCounts edges = count_edges(welded_by_position(shape.mesh));
+      shape.closed = edges.boundary == 0;
+      if (shape.closed && signed_volume(shape.mesh) < 0) flip_winding(shape.mesh);
+      shape.material = materials[primitive.material];
+      shape.interior_medium = media[primitive.material];
+      shape.emission = asset.materials[primitive.material].emission;
+      if (shape.interior_medium >= 0) {
+        const GltfMaterial& m = asset.materials[primitive.material];
+        if (out_.scene.materials[shape.material].kind == MaterialKind::kDiffuse) {
+          value.fail("the glTF material '" + m.name + "' (" + m.element +
+                     ") has a volume but its snee material is diffuse, which light cannot "
+                     "enter; override its medium with null or its material with a dielectric");
+        }
+        if (!shape.closed) {
+          out_.warnings.push_back(shape.source + ": has an interior medium but is open (" +
+                                  std::to_string(edges.boundary) +
+                                  " boundary edges); paths inside may leak out through the holes");
+        }
+      }
+      out_.scene.shapes.push_back(std::move(shape));
+    }
+    for (const Light& light : asset.lights) out_.scene.lights.push_back(light);
+
+    std::optional<Camera> camera = asset.camera;
+    if (camera && asset.camera_aspect > 0) {
+      camera->width = std::clamp(
+          static_cast<int>(std::lround(camera->height * asset.camera_aspect)), 1, kMaxImageEdge);
+    }
+    if (auto resolution = obj.optional("resolution")) {
+      const std::vector<JsonValue> wh = resolution->array(2);
+      if (camera) {
+        camera->width = static_cast<int>(wh[0].integer(1, kMaxImageEdge));
+        camera->height = static_cast<int>(wh[1].integer(1, kMaxImageEdge));
+      }
+      canonical["resolution"] = resolution->json();
+    }
+    if (camera) {
+      check_coordinates(camera->position, file_value, "the glTF camera position");
+    }
+    for (const Light& light : asset.lights) {
+      if (light.kind == LightKind::kPoint) {
+        check_coordinates(light.position, file_value, "a glTF light position");
+      }
+    }
+    canonical_["include"].push_back(canonical);
+    return camera;
   }
 
   void read_render(const JsonValue& value) {
@@ -636,6 +791,15 @@ LoadedScene load_scene(const std::string& spec, const MemoryBudget& budget) {
   constexpr std::string_view kBuiltinPrefix = "builtin:";
   if (spec.starts_with(kBuiltinPrefix))
     return load_builtin_scene(spec.substr(kBuiltinPrefix.size()));
+  std::string ext = fs::path(spec).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".gltf" || ext == ".glb") {
+    // A glTF file alone is the scene that includes it, with its camera and lights.
+    const json doc = {{"name", fs::path(spec).stem().string()},
+                      {"include", json::array({{{"file", fs::absolute(spec).string()}}})}};
+    return load_scene_json(doc, spec, fs::path(spec).parent_path().string(), budget);
+  }
   return load_scene_file(spec, budget);
 }
 

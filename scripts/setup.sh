@@ -8,7 +8,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 packages=(
   cmake make g++ pkg-config
   libembree-dev libopenimageio-dev libtbb-dev libxsimd-dev xtl-dev nlohmann-json3-dev
-  libcli11-dev librandom123-dev libtinyobjloader-dev libgtest-dev libbenchmark-dev
+  libcli11-dev librandom123-dev libtinyobjloader-dev libtinygltf-dev assimp-testmodels libgtest-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   fonts-dejavu-core
   clang-format
