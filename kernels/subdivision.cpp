@@ -276,7 +276,9 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
                                    {tb.x[i], tb.y[i], tb.z[i]}, tb.pdf[i]);
         // The manifold strategy would run at this x_j if the walk reached it (medium_event:
         // depth below the limit; docs/method.md 3.10).
-        if (m.manifold_sphere >= 0 && state.depth[s] + 1 < static_cast<uint32_t>(ctx.max_depth)) {
+        const LightSample& light = scratch.lights.samples[i];
+        if (m.manifold_sphere >= 0 && light.delta && std::isinf(light.distance) &&
+            state.depth[s] + 1 < static_cast<uint32_t>(ctx.max_depth)) {
           p.suffix.manifold = true;
           p.suffix.boundary_curvature = 1.0f / ctx.scene->shapes[m.manifold_sphere].radius;
         }
