@@ -186,7 +186,8 @@ RenderCommand::RenderCommand(CLI::App& parent)
   c.add_option("--snee-strategies", snee_strategies_,
                "Comma-separated strategies that share the transport SNEE handles: tb "
                "(top-to-bottom), bt (bottom-to-top), ub (BSDF-sampled exit), ul (light-sampled "
-               "exit); a subset isolates them")
+               "exit), mn (refracted next-event estimation through a smooth sphere); a subset "
+               "isolates them")
       ->check(CLI::Validator(
           [](const std::string& text) {
             try {

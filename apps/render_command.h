@@ -51,7 +51,7 @@ class RenderCommand {
   bool quiet_ = false;
   std::string snee_probe_ = "uniform";
   std::string snee_heuristic_ = "balance";
-  std::string snee_strategies_ = "tb,bt,ub,ul";
+  std::string snee_strategies_ = "tb,bt,ub,ul,mn";
   // Output images (apps/output_files.h, docs/output-images.md).
   void add_image_options(CLI::App& c);
   ToneMap preview_tone() const;

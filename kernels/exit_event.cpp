@@ -1,6 +1,10 @@
 #include "kernels/exit_event.h"
 
+#include "kernels/bsdf/fresnel.h"
+#include "kernels/medium/free_flight.h"
+#include "kernels/medium/henyey_greenstein.h"
 #include "kernels/path_ops.h"
+#include "kernels/snee/manifold_sphere.h"
 #include "kernels/snee/snee_strategies.h"
 
 namespace snee {
@@ -32,7 +36,8 @@ SneeSuffix exit_suffix(const KernelContext& ctx, Vec3 x_i, Vec3 omega_in, Vec3 x
 // Queues `unweighted` times the four-way weight of strategy st, chosen by V_first(x_i, x_k),
 // gated by the segments [first, first + count).
 void queue_weighted(const KernelContext& ctx, Strategy st, const SneeSuffix& s, uint32_t slot,
-                    Rgb unweighted, uint32_t first, uint32_t count, ShadowQueue& shadow) {
+                    Rgb unweighted, uint32_t first, uint32_t count, ShadowQueue& shadow,
+                    ConnectionKind kind = ConnectionKind::kLight) {
   const ExitWeights w = snee_exit_weights(st, s, ctx.snee);
   const float w_first = static_cast<float>(w.if_first_hit);
   const float w_not_first = static_cast<float>(w.if_not_first_hit);
@@ -41,7 +46,7 @@ void queue_weighted(const KernelContext& ctx, Strategy st, const SneeSuffix& s, 
   const float dist = length(to_k);
   const uint32_t selector =
       shadow.add_segment(s.x_i, to_k / dist, std::max(0.0f, dist - ctx.epsilon), kVisibilityOnly);
-  shadow.add_connection({ConnectionKind::kLight, slot, first, count, static_cast<int32_t>(selector),
+  shadow.add_connection({kind, slot, first, count, static_cast<int32_t>(selector),
                          unweighted * w_first, unweighted * w_not_first});
 }
 
@@ -111,6 +116,83 @@ void connect_exit_emission(const KernelContext& ctx, const PathState& state, uin
                   state.exit_geom[slot], omega_o, light_pdf, false, distant);
   queue_weighted(ctx, Strategy::kUnidirectionalBsdf, s, slot, state.throughput(slot) * le, 0, 0,
                  shadow);
+}
+
+void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                      const MediumInfo& m, ShadowQueue& shadow, KernelCounters& counters) {
+  if (ctx.lights->empty() || (m.manifold_sphere < 0 && !m.manifold_unsupported)) return;
+  const Vec3 x_j = state.vertex_j(slot);
+  const RandomBlock r = draw(ctx, state, slot, RngPurpose::kSneeManifold);
+  const LightSample light = ctx.lights->sample(x_j, r.u[0], {r.u[1], r.u[2]});
+  // Directional lights only: a point light's exit points need a solve in two dimensions.
+  if (!light.valid || !light.delta || !std::isinf(light.distance) || !(light.pdf > 0) ||
+      is_black(light.radiance)) {
+    return;
+  }
+  if (m.manifold_sphere < 0) {
+    counters.count(SneeCounter::kManifoldUnsupportedBoundary);
+    return;
+  }
+  const Shape& sphere = ctx.scene->shapes[static_cast<size_t>(m.manifold_sphere)];
+  const DielectricParams& interface =
+      ctx.surfaces[static_cast<size_t>(m.manifold_sphere)].dielectric;
+  const SphereExits exits =
+      sphere_exits_toward_light(sphere.center, sphere.radius, interface.eta, light.wi, x_j);
+  if (exits.count == 0) {
+    counters.count(SneeCounter::kManifoldNoExit);
+    return;
+  }
+  const Vec3 w_before = state.direction_in_j(slot);
+  const double curvature = 1.0 / sphere.radius;
+  SneeSuffix s;
+  s.x_i = state.vertex_i(slot);
+  s.omega_in = state.direction_in_i(slot);
+  s.x_j = x_j;
+  s.omega_o = light.wi;
+  s.medium = {m.sigma_s, m.sigma_t, m.g};
+  s.interface = interface;
+  s.light_pdf = light.pdf;
+  s.light_delta = true;
+  s.light_distant = true;
+  s.x_i_medium = (state.flags[slot] & kPathMediumVertexI) != 0;
+  s.x_j_medium = true;
+  s.manifold = true;
+  s.boundary_curvature = static_cast<float>(curvature);
+  const Rgb beta = state.throughput(slot);
+  for (int e = 0; e < exits.count; ++e) {
+    const SphereExit& exit = exits.exit[static_cast<size_t>(e)];
+    const double cos_l = dot(exit.n, light.wi);
+    const double jacobian =
+        refraction_volume_jacobian(exit.n, light.wi, interface.eta, curvature, exit.t);
+    if (!(cos_l > 0) || !(jacobian > 0)) continue;
+    // docs/method.md 3.10: f_p T (1 - F_r) E cos_L / J per unit volume at x_j, over the
+    // light's selection probability.
+    const double scale = hg_phase(dot(w_before, -exit.omega_r), m.g) *
+                         (1.0 - fresnel_dielectric(static_cast<float>(cos_l), interface.eta)) *
+                         cos_l / (jacobian * light.pdf);
+    const Rgb unweighted = beta * light.radiance *
+                           transmittance(m.sigma_t, static_cast<float>(exit.t)) *
+                           static_cast<float>(scale);
+    if (is_black(unweighted) || !is_finite(unweighted)) continue;
+    s.x_k = exit.y;
+    s.n_k = exit.n;
+    const Vec3 inner = exit.y - ctx.epsilon * exit.n, outer = exit.y + ctx.epsilon * exit.n;
+    const Vec3 to_inner = inner - x_j;
+    const float length_inner = length(to_inner);
+    const uint32_t first =
+        shadow.add_segment(x_j, to_inner / length_inner, length_inner, kVisibilityOnly);
+    shadow.add_segment(outer, light.wi, kInfinity, kVisibilityOnly);
+    if (s.x_i_medium) {
+      queue_weighted(ctx, Strategy::kManifold, s, slot, unweighted, first, 2, shadow,
+                     ConnectionKind::kManifold);
+    } else {
+      // x_i is a surface vertex: no probe-based strategy competes, V_first does not matter.
+      const float w = static_cast<float>(snee_exit_weight(Strategy::kManifold, s, ctx.snee));
+      shadow.add_connection(
+          {ConnectionKind::kManifold, slot, first, 2, -1, unweighted * w, Rgb(0.0f)});
+    }
+    counters.count(SneeCounter::kManifoldConnections);
+  }
 }
 
 }  // namespace snee

@@ -48,4 +48,13 @@ void connect_exit_emission(const KernelContext& ctx, const PathState& state, uin
                            Vec3 omega_o, Rgb le, float light_pdf, bool distant,
                            ShadowQueue& shadow);
 
+// The manifold strategy (docs/method.md 3.10) at the medium vertex the walk just made (x_j of
+// the path's memory, in medium m), before its event counter moves on: a light sample, and for a
+// directional light every exit point of m's smooth sphere through which the refracted light
+// reaches x_j, each queued as a connection gated by x_j -> exit and exit -> light, weighted
+// against top-to-bottom at the previous vertex (a V_first selector) when that was a medium
+// vertex. Counts the vertices it cannot serve (a mesh boundary) in the statistics.
+void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                      const MediumInfo& m, ShadowQueue& shadow, KernelCounters& counters);
+
 }  // namespace snee

@@ -88,6 +88,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       height(s.camera.height) {
   media.reserve(s.media.size());
   for (const Medium& m : s.media) media.push_back({m.sigma_s, m.sigma_t(), m.g, true});
+  std::vector<int> boundaries(s.media.size(), 0);
   surfaces.reserve(s.shapes.size());
   for (const Shape& shape : s.shapes) {
     const Material& mat = s.materials.at(static_cast<size_t>(shape.material));
@@ -100,6 +101,22 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
     if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
     if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {
       media[static_cast<size_t>(shape.interior_medium)].straight_nee = false;
+      ++boundaries[static_cast<size_t>(shape.interior_medium)];
+    }
+  }
+  for (size_t i = 0; i < s.shapes.size(); ++i) {
+    const Shape& shape = s.shapes[i];
+    const SurfaceInfo& info = surfaces[i];
+    if (shape.interior_medium < 0 || info.kind != MaterialKind::kDielectric ||
+        !info.dielectric.delta() || info.dielectric.eta == 1.0f) {
+      continue;
+    }
+    MediumInfo& m = media[static_cast<size_t>(shape.interior_medium)];
+    if (shape.kind == ShapeKind::kSphere &&
+        boundaries[static_cast<size_t>(shape.interior_medium)] == 1) {
+      m.manifold_sphere = static_cast<int32_t>(i);
+    } else {
+      m.manifold_unsupported = true;
     }
   }
   const Camera& c = s.camera;

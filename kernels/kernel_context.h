@@ -40,6 +40,12 @@ struct MediumInfo {
   // True when every boundary of this medium is an index-matched (null) interface, so a
   // straight shadow ray from inside can reach a light: only then is medium NEE worth a ray.
   bool straight_nee;
+  // The shape index of the smooth dielectric sphere that is this medium's only boundary, where
+  // the manifold strategy can find exit points (docs/method.md 3.10); -1 if there is none.
+  int32_t manifold_sphere = -1;
+  // Whether the boundary is a smooth dielectric the manifold strategy has no solver for (a
+  // mesh, or several shapes): its single-scattered light under a directional light is missing.
+  bool manifold_unsupported = false;
 };
 
 // The stage kernels that run their queue in SIMD chunks, for lane-occupancy counters.

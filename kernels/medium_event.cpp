@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "kernels/batched_pass.h"
+#include "kernels/exit_event.h"
 #include "kernels/medium/free_flight.h"
 #include "kernels/medium/henyey_greenstein.h"
 #include "kernels/medium_lanes.h"
@@ -169,7 +170,10 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     }
     // SNEE runs after roulette on the survivors with their rescaled throughput (unbiased);
     // the probe stage reads x_i from the path's vertex memory and draws at this event.
-    if (ctx.integrator == Integrator::kSnee && !m.straight_nee) q.probe.push(s);
+    if (ctx.integrator == Integrator::kSnee && !m.straight_nee) {
+      connect_manifold(ctx, state, s, m, q.shadow, counters);
+      q.probe.push(s);
+    }
     state.set_ray(s, x, {flights.wx[k], flights.wy[k], flights.wz[k]});
     state.event[s] += 1;
     q.extend.push(s);

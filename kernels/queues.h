@@ -169,7 +169,7 @@ inline constexpr int32_t kVisibilityOnly = -2;
 // segment whose visibility does not gate the contribution but picks between two MIS-weighted
 // values (docs/method.md 3.6: the weight needs V_first(x_i, x_k)).
 // What produced a connection, for the statistics of failed connections.
-enum class ConnectionKind : uint8_t { kLight, kTopToBottom, kBottomToTop };
+enum class ConnectionKind : uint8_t { kLight, kTopToBottom, kBottomToTop, kManifold };
 
 struct ShadowConnection {
   ConnectionKind kind;

@@ -129,6 +129,7 @@ void shadow_connect(const KernelContext& ctx, PathState& state, StageQueues& q,
     if (is_black(gate)) {
       if (c.kind == ConnectionKind::kTopToBottom) counters.count(SneeCounter::kTopToBottomOccluded);
       if (c.kind == ConnectionKind::kBottomToTop) counters.count(SneeCounter::kBottomToTopOccluded);
+      if (c.kind == ConnectionKind::kManifold) counters.count(SneeCounter::kManifoldOccluded);
       continue;
     }
     const bool selector_clear =

@@ -25,6 +25,12 @@ enum class SneeCounter : int {
   kConnectionRays,          // visibility segments of TB and BT connections
   kFourWayExitEvents,       // exit events of the walk weighted against SNEE (U_B, U_L)
   kScalarWeighings,         // TB/BT proposals whose float weighing left float's range
+  kManifoldConnections,     // manifold-strategy connections queued (one per exit point found)
+  kManifoldOccluded,        // manifold connections with a blocked segment
+  kManifoldNoExit,          // medium vertices under a directional light with no exit point
+  // Medium vertices under a directional light behind a smooth boundary the manifold strategy
+  // has no solver for (a mesh): their light through one refraction is not rendered.
+  kManifoldUnsupportedBoundary,
   kCount
 };
 inline constexpr int kSneeCounterCount = static_cast<int>(SneeCounter::kCount);
@@ -47,7 +53,11 @@ inline const char* snee_counter_name(SneeCounter c) {
                                 "bottom_to_top_occluded",
                                 "connection_rays",
                                 "four_way_exit_events",
-                                "scalar_weighings"};
+                                "scalar_weighings",
+                                "manifold_connections",
+                                "manifold_occluded",
+                                "manifold_no_exit",
+                                "manifold_unsupported_boundary"};
   static_assert(sizeof(names) / sizeof(names[0]) == kSneeCounterCount);
   return names[static_cast<int>(c)];
 }

@@ -7,9 +7,15 @@
 #include "kernels/kernel_context.h"
 #include "kernels/path_state.h"
 #include "kernels/queues.h"
+#include "kernels/snee/manifold_sphere.h"
 #include "kernels/subdivision_scratch.h"
 
 namespace snee {
+
+// Shadow segments one slot may queue in one turn: top-to-bottom and bottom-to-top (3 each) or an
+// exit event's, with room to spare, plus two per exit point of the manifold strategy and its
+// V_first selector.
+inline constexpr size_t kShadowSegmentsPerSlot = 8 + 3 * kMaxSphereExits;
 
 // The queues one work unit cycles through: the inputs of the stage table (stage_table.h) and
 // the scratch of the stages' batched passes.
@@ -26,7 +32,7 @@ struct StageQueues {
         surfaces(slots),
         subdivision(slots),
         rays(slots),
-        shadow(slots * 8) {}
+        shadow(slots * kShadowSegmentsPerSlot) {}
   SlotQueue extend;                // rays to trace
   SlotQueue medium;                // traced rays travelling inside a medium
   SlotQueue surface;               // rays that reached a surface

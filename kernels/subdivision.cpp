@@ -193,8 +193,9 @@ void weigh_and_connect(const KernelContext& ctx, const PathState& state, const P
     for (size_t l = 0; l < count; ++l) {
       const ProposalQueue::Entry& e = q.entries[k + l];
       const Rgb beta = state.throughput(e.slot);
-      if (!w.in_range[l]) {
-        counters.count(SneeCounter::kScalarWeighings);
+      if (!w.in_range[l] || e.proposal.suffix.manifold) {
+        // Suffixes the manifold strategy shares (case D on a sphere) have no batched weighing.
+        if (!e.proposal.suffix.manifold) counters.count(SneeCounter::kScalarWeighings);
         const SneeCandidate c = finish_proposal(e.strategy, e.proposal, ctx.snee);
         if (c.valid) {
           queue_connection(e.strategy, e.slot, beta * c.contribution, c.segments, shadow, counters);
@@ -270,9 +271,18 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
       } else if (tb.status[i] != kSneeSampled) {
         count_failure(failure_of(tb.status[i]), Strategy::kTopToBottom, counters);
       } else {
-        propose(top_to_bottom_proposal(origin, medium, exit, scratch.lights.samples[i], ctx.epsilon,
-                                       {tb.x[i], tb.y[i], tb.z[i]}, tb.pdf[i]),
-                Strategy::kTopToBottom, s);
+        SneeProposal p =
+            top_to_bottom_proposal(origin, medium, exit, scratch.lights.samples[i], ctx.epsilon,
+                                   {tb.x[i], tb.y[i], tb.z[i]}, tb.pdf[i]);
+        // The manifold strategy would run at this x_j if the walk reached it (medium_event:
+        // depth below the limit; docs/method.md 3.10).
+        const LightSample& light = scratch.lights.samples[i];
+        if (m.manifold_sphere >= 0 && light.delta && std::isinf(light.distance) &&
+            state.depth[s] + 1 < static_cast<uint32_t>(ctx.max_depth)) {
+          p.suffix.manifold = true;
+          p.suffix.boundary_curvature = 1.0f / ctx.scene->shapes[m.manifold_sphere].radius;
+        }
+        propose(p, Strategy::kTopToBottom, s);
       }
     }
     if (bottom_to_top) {

@@ -127,6 +127,9 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   set(Strategy::kBottomToTop, bottom_to_top);
   set(Strategy::kUnidirectionalBsdf, xsimd::select(s.light_delta, zero, walk * exit_bsdf));
   set(Strategy::kUnidirectionalLight, xsimd::select(delta, zero, walk * s.light_pdf));
+  // The manifold strategy competes only for suffixes with SneeSuffix::manifold set, which the
+  // subdivision stage weighs with the scalar code.
+  set(Strategy::kManifold, zero);
 
   // The integrand (suffix_integrand) per unit of emitted radiance.
   const FloatBatch first_segment = phase_i * phase_j / r_ij2;

@@ -13,6 +13,7 @@ constexpr std::array<std::pair<std::string_view, Strategy>, kStrategyCount> kNam
     {"bt", Strategy::kBottomToTop},
     {"ub", Strategy::kUnidirectionalBsdf},
     {"ul", Strategy::kUnidirectionalLight},
+    {"mn", Strategy::kManifold},
 }};
 
 }  // namespace
@@ -32,7 +33,7 @@ StrategySet parse_strategy_set(const std::string& list) {
     }
     if (!known) {
       throw std::invalid_argument("unknown SNEE strategy '" + std::string(item) +
-                                  "' (expected a comma-separated list of tb, bt, ub, ul)");
+                                  "' (expected a comma-separated list of tb, bt, ub, ul, mn)");
     }
     begin = end + 1;
   }

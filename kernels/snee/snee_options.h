@@ -8,14 +8,16 @@
 
 namespace snee {
 
-// The four ways the suffix x_i -> x_j -> x_k -> light can be produced (docs/method.md 3.6).
+// The ways the suffix x_i -> x_j -> x_k -> light can be produced (docs/method.md 3.6, 3.10).
 enum class Strategy : uint8_t {
   kTopToBottom,          // TB: light -> x_k -> x_j, then connect to x_i
   kBottomToTop,          // BT: x_i -> x_j (joint importance), connect to x_k, BTDF to the light
   kUnidirectionalBsdf,   // U_B: the tracer's random walk, BSDF-sampled exit reaching a light
   kUnidirectionalLight,  // U_L: the tracer's random walk, light sample at the exit point
+  kManifold,             // MN: the walk to x_j, then every x_k whose refraction of a
+                         // directional light reaches x_j (smooth sphere, docs/method.md 3.10)
 };
-inline constexpr int kStrategyCount = 4;
+inline constexpr int kStrategyCount = 5;
 
 // Bit set of strategies allowed to carry weight on the suffixes SNEE handles. Disabling some
 // isolates the others (docs/method.md 5.4): the remaining strategies share the handled class, the

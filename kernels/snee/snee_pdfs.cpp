@@ -5,6 +5,7 @@
 #include "kernels/medium/henyey_greenstein.h"
 #include "kernels/snee/distance_samplers.h"
 #include "kernels/snee/joint_importance.h"
+#include "kernels/snee/manifold_sphere.h"
 #include "kernels/snee/probe.h"
 
 namespace snee {
@@ -26,12 +27,28 @@ double exit_light_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
   return s.light_pdf;
 }
 
+// The walk's first step x_i -> x_j: phase sampling and a collision at x_j (volume measure).
+double first_step_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
+  return hg_phase(dot(s.omega_in, g.omega_ij), s.medium.g) *
+         free_flight_pdf(s.medium.sigma_t, static_cast<float>(g.r_ij)) / (g.r_ij * g.r_ij);
+}
+
+// The manifold strategy's part at x_j, in case D's measure dA(x_k) dt: it takes the light
+// (selection probability) and every exit point, so x_j's volume density becomes dA dt by the
+// refraction volume Jacobian (docs/method.md 3.10). Zero wherever it does not run.
+double manifold_exit_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
+  if (!s.manifold || !s.x_j_medium || !s.light_delta || !s.light_distant || !s.interface.delta() ||
+      !(g.r_jk > 0) || !(g.cos_o > 0) || !(g.cos_k_j > 0)) {
+    return 0.0;
+  }
+  return s.light_pdf * refraction_volume_jacobian(s.n_k, s.omega_o, s.interface.eta,
+                                                  s.boundary_curvature, g.r_jk);
+}
+
 double walk_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
   if (!g.valid || !(g.cos_k_j > 0)) return 0.0;
   const float g_phase = s.medium.g;
-  const double first = hg_phase(dot(s.omega_in, g.omega_ij), g_phase) *
-                       free_flight_pdf(s.medium.sigma_t, static_cast<float>(g.r_ij)) /
-                       (g.r_ij * g.r_ij);
+  const double first = first_step_pdf(s, g);
   const double second = hg_phase(dot(g.omega_ij, g.omega_jk), g_phase) *
                         free_flight_survival(s.medium.sigma_t, static_cast<float>(g.r_jk)) *
                         g.cos_k_j / (g.r_jk * g.r_jk);
@@ -80,8 +97,11 @@ double heuristic(double p, MisHeuristic h) {
   return h == MisHeuristic::kPower ? p * p : p;
 }
 
-bool is_unidirectional(Strategy st) {
-  return st == Strategy::kUnidirectionalBsdf || st == Strategy::kUnidirectionalLight;
+// The strategies that do not start from a probe, and so compete for suffixes SNEE's probe
+// cannot produce.
+bool is_walk_based(Strategy st) {
+  return st == Strategy::kUnidirectionalBsdf || st == Strategy::kUnidirectionalLight ||
+         st == Strategy::kManifold;
 }
 
 }  // namespace
@@ -116,6 +136,13 @@ double unidirectional_bsdf_pdf(const SneeSuffix& s) {
   return walk_pdf(s, g) * exit_bsdf_pdf(s, g);
 }
 
+double manifold_pdf(const SneeSuffix& s) {
+  const SuffixGeometry g = suffix_geometry(s);
+  if (!g.valid) return 0.0;
+  const double manifold = manifold_exit_pdf(s, g);
+  return manifold > 0 ? first_step_pdf(s, g) * manifold : 0.0;
+}
+
 double unidirectional_light_pdf(const SneeSuffix& s) {
   const SuffixGeometry g = suffix_geometry(s);
   return walk_pdf(s, g) * exit_light_pdf(s, g);
@@ -133,6 +160,7 @@ StrategyPdfs strategy_pdfs(const SneeSuffix& s, const SuffixGeometry& g,
   if (!out.handled) {
     set(Strategy::kUnidirectionalBsdf, exit_bsdf_pdf(s, g));
     set(Strategy::kUnidirectionalLight, exit_light_pdf(s, g));
+    set(Strategy::kManifold, manifold_exit_pdf(s, g));
     return out;
   }
   const double walk = walk_pdf(s, g);
@@ -140,12 +168,14 @@ StrategyPdfs strategy_pdfs(const SneeSuffix& s, const SuffixGeometry& g,
   set(Strategy::kBottomToTop, bt_pdf(s, g, options));
   set(Strategy::kUnidirectionalBsdf, walk * exit_bsdf_pdf(s, g));
   set(Strategy::kUnidirectionalLight, walk * exit_light_pdf(s, g));
+  const double manifold = manifold_exit_pdf(s, g);
+  set(Strategy::kManifold, manifold > 0 ? first_step_pdf(s, g) * manifold : 0.0);
   return out;
 }
 
 double mis_weight(Strategy st, const StrategyPdfs& pdfs, const SneeOptions& options) {
   const auto competes = [&](Strategy t) {
-    return pdfs.handled ? options.enabled.contains(t) : is_unidirectional(t);
+    return pdfs.handled ? options.enabled.contains(t) : is_walk_based(t);
   };
   if (!competes(st) || !(pdfs[st] > 0)) return 0.0;
   double sum = 0;

@@ -26,6 +26,10 @@ double top_to_bottom_pdf(const SneeSuffix& s, const SneeOptions& options);
 double bottom_to_top_pdf(const SneeSuffix& s, const SneeOptions& options);
 double unidirectional_bsdf_pdf(const SneeSuffix& s);
 double unidirectional_light_pdf(const SneeSuffix& s);
+// The manifold strategy at x_j (docs/method.md 3.10), in case D's measure dA(x_k) dt: the walk's
+// step to x_j, the light's selection probability and the refraction volume Jacobian. Only
+// meaningful when x_i and x_j are medium vertices; 0 unless s.manifold.
+double manifold_pdf(const SneeSuffix& s);
 
 // The tracer's probability of choosing transmission at a smooth interface when refracting from
 // the inside at x_k: its Fresnel-proportional lobe choice (dielectric_sample's delta pdf).
@@ -45,7 +49,8 @@ StrategyPdfs strategy_pdfs(const SneeSuffix& s, const SuffixGeometry& g,
                            const SneeOptions& options);
 
 // Weight of strategy st for the suffix the pdfs describe: balance or power heuristic over the
-// strategies that compete for it (the enabled ones for handled suffixes, U_B and U_L otherwise);
+// strategies that compete for it (the enabled ones for handled suffixes, U_B, U_L and the
+// manifold strategy otherwise);
 // 0 when st does not compete or cannot produce the suffix.
 double mis_weight(Strategy st, const StrategyPdfs& pdfs, const SneeOptions& options);
 

@@ -39,6 +39,12 @@ struct SneeSuffix {
   // Whether x_i and x_j are medium scattering vertices (not surface vertices).
   bool x_i_medium = false;
   bool x_j_medium = false;
+  // Whether the manifold strategy (docs/method.md 3.10) runs at x_j for this suffix: a smooth
+  // sphere boundary, a directional light, and x_j within the walk's depth limit. It finds every
+  // exit point, so then it can produce the suffix whenever x_j is a medium vertex.
+  bool manifold = false;
+  // How fast the outward normal turns per unit length along the boundary at x_k (1 / radius).
+  float boundary_curvature = 0;
 };
 
 // The deltas of a smooth interface and of a directional light remove dimensions from the path

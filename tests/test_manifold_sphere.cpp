@@ -1,0 +1,254 @@
+// The manifold strategy's exit-point solver and volume Jacobian on the smooth sphere
+// (docs/method.md 3.10), and its place in the MIS weights: every solution obeys Snell's law,
+// every exit point a forward-traced refracted ray passes through is found again, the Jacobian
+// agrees with finite differences of the map (y, t) -> x and integrates to the sphere's volume,
+// and top-to-bottom and the manifold strategy share case-D suffixes with weights summing to one.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "kernels/bsdf/fresnel.h"
+#include "kernels/sampling.h"
+#include "kernels/snee/manifold_sphere.h"
+#include "kernels/snee/snee_pdfs.h"
+#include "tests/support/chi2.h"
+#include "tests/support/statistics.h"
+
+namespace snee {
+namespace {
+
+using test::TestRng;
+
+const Vec3 kCentre{0.3f, -0.2f, 0.1f};
+constexpr float kRadius = 1.3f;
+constexpr float kEta = 1.5f;
+
+Vec3 random_inside(TestRng& rng) {
+  for (;;) {
+    const Vec3 p{2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1};
+    if (dot(p, p) < 1) return kCentre + p * kRadius;
+  }
+}
+
+// The light refracted into the sphere at outward normal n: the inside propagation direction.
+Vec3 refracted_light(Vec3 light, Vec3 n, float eta = kEta) {
+  Vec3 wt;
+  EXPECT_TRUE(refract(light, n, 1.0f / eta, &wt));
+  return wt;
+}
+
+TEST(ManifoldSphere, SolutionsObeySnellsLaw) {
+  TestRng rng(1);
+  int solutions = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const Vec3 light = sample_uniform_sphere(rng.uniform2());
+    const Vec3 x = random_inside(rng);
+    const SphereExits exits = sphere_exits_toward_light(kCentre, kRadius, kEta, light, x);
+    for (int i = 0; i < exits.count; ++i) {
+      const SphereExit& e = exits.exit[static_cast<size_t>(i)];
+      ++solutions;
+      ASSERT_NEAR(length(e.y - kCentre), kRadius, 1e-5f);
+      ASSERT_GT(dot(e.n, light), 0.0f);
+      const Vec3 to_x = x - e.y;
+      ASSERT_NEAR(length(to_x), e.t, 1e-5);
+      ASSERT_GT(dot(normalize(to_x), refracted_light(light, e.n)), 1.0f - 1e-5f);
+    }
+  }
+  // Most of the sphere sees the light (the rest lies in the shadow of total internal reflection).
+  EXPECT_GT(solutions, 15000);
+}
+
+// Forward: an exit point y facing the light and a distance along its refracted ray inside the
+// sphere give x; the solver from x must return y (completeness, so no solution is missed). The
+// float x lies up to ~1e-7 off the exact ray, which near the caustic (where two solutions merge,
+// J -> 0) can remove the pair: such misses are allowed only there, and must be rare (the ray
+// sampling used here concentrates near the caustic like 1 / J, the renderer's x does not).
+TEST(ManifoldSphere, FindsEveryForwardTracedExit) {
+  TestRng rng(2);
+  int near_caustic_misses = 0;
+  constexpr int kSamples = 20000;
+  for (int k = 0; k < kSamples; ++k) {
+    const Vec3 light = sample_uniform_sphere(rng.uniform2());
+    Vec3 n = sample_uniform_sphere(rng.uniform2());
+    if (dot(n, light) < 0) n = -n;
+    const Vec3 y = kCentre + n * kRadius;
+    const Vec3 w = refracted_light(light, n);
+    const float chord = -2 * kRadius * dot(n, w);
+    const float t = chord * (0.001f + 0.998f * rng.uniform());
+    const Vec3 x = y + w * t;
+    const SphereExits exits = sphere_exits_toward_light(kCentre, kRadius, kEta, light, x);
+    bool found = false;
+    for (int i = 0; i < exits.count; ++i)
+      found = found || length(exits.exit[static_cast<size_t>(i)].y - y) < 1e-3f;
+    if (found) continue;
+    const double relative_j =
+        refraction_volume_jacobian(n, light, kEta, 1.0 / kRadius, t) / -dot(n, w);
+    ASSERT_LT(relative_j, 0.02) << "exit " << k << " not found among " << exits.count;
+    ++near_caustic_misses;
+  }
+  EXPECT_LT(near_caustic_misses, kSamples / 1000);
+}
+
+// |det(dx/du, dx/dv, dx/dt)| for x = y(u, v) + t omega_r(y(u, v)), with (u, v) arc lengths on the
+// sphere around y, by central differences.
+double numerical_jacobian(Vec3 n0, Vec3 light, double t) {
+  const Frame f = Frame::from_normal(n0);
+  const auto x_of = [&](double u, double v) {
+    const Vec3 n = normalize(
+        n0 + f.to_world(Vec3(static_cast<float>(u / kRadius), static_cast<float>(v / kRadius), 0)));
+    return kCentre + n * kRadius + refracted_light(light, n) * static_cast<float>(t);
+  };
+  const double h = 1e-3;
+  const Vec3 du = (x_of(h, 0) - x_of(-h, 0)) / static_cast<float>(2 * h);
+  const Vec3 dv = (x_of(0, h) - x_of(0, -h)) / static_cast<float>(2 * h);
+  return std::abs(dot(cross(du, dv), refracted_light(light, n0)));
+}
+
+TEST(ManifoldSphere, JacobianMatchesFiniteDifferences) {
+  TestRng rng(3);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 light = sample_uniform_sphere(rng.uniform2());
+    Vec3 n = sample_uniform_sphere(rng.uniform2());
+    if (dot(n, light) < 0.2f) continue;
+    const double chord = -2 * kRadius * dot(n, refracted_light(light, n));
+    const double t = chord * rng.uniform();
+    const double analytic = refraction_volume_jacobian(n, light, kEta, 1.0 / kRadius, t);
+    const double numeric = numerical_jacobian(n, light, t);
+    ASSERT_NEAR(analytic, numeric, 2e-3 * (1 + numeric)) << "t " << t;
+  }
+  // A flat boundary: the Jacobian is the refracted cosine, whatever the distance.
+  const Vec3 n{0, 0, 1}, light = normalize(Vec3{0.5f, 0.2f, 1});
+  EXPECT_NEAR(refraction_volume_jacobian(n, light, kEta, 0.0, 3.0),
+              -dot(n, refracted_light(light, n)), 1e-6);
+}
+
+// Change of variables: integrating J over the lit hemisphere and the chord inside, divided by
+// the number of exits x has, gives the volume the refracted light reaches, the sphere's volume
+// times the share of uniformly drawn interior points that have an exit. Sampled uniformly in
+// dA dt; each term is bounded, so the measured standard errors are reliable.
+TEST(ManifoldSphere, JacobianIntegratesToTheVolume) {
+  TestRng rng(4);
+  const Vec3 light = normalize(Vec3{1, 1, 1});
+  test::MeanEstimator estimate;
+  // Measure of (y, t): the lit hemisphere's area 2 pi R^2 times the chord, sampled as
+  // cos_theta uniform (area-uniform on the hemisphere) and t uniform on the chord.
+  for (int k = 0; k < 200000; ++k) {
+    const float c = rng.uniform(), phi = 2 * kPi * rng.uniform();
+    const float s = std::sqrt(std::max(0.0f, 1 - c * c));
+    const Frame f = Frame::from_normal(light);
+    const Vec3 n = normalize(f.to_world({s * std::cos(phi), s * std::sin(phi), c}));
+    const Vec3 w = refracted_light(light, n);
+    const double chord = -2.0 * kRadius * dot(n, w);
+    const double t = chord * rng.uniform();
+    const Vec3 x = kCentre + n * kRadius + w * static_cast<float>(t);
+    const SphereExits exits = sphere_exits_toward_light(kCentre, kRadius, kEta, light, x);
+    if (exits.count == 0) {
+      estimate.add(0.0);
+      continue;
+    }
+    const double measure = 2 * kPi * kRadius * kRadius * chord;
+    estimate.add(measure * refraction_volume_jacobian(n, light, kEta, 1.0 / kRadius, t) /
+                 exits.count);
+  }
+  const double sphere = 4.0 / 3.0 * kPi * kRadius * kRadius * kRadius;
+  test::MeanEstimator lit;
+  for (int k = 0; k < 200000; ++k) {
+    const Vec3 x = random_inside(rng);
+    lit.add(sphere_exits_toward_light(kCentre, kRadius, kEta, light, x).count > 0 ? sphere : 0.0);
+  }
+  EXPECT_LT(
+      test::z_score(estimate.mean(), estimate.standard_error(), lit.mean(), lit.standard_error()),
+      4.0)
+      << estimate.mean() << " +- " << estimate.standard_error() << " vs " << lit.mean() << " +- "
+      << lit.standard_error();
+  EXPECT_LT(estimate.standard_error(), 0.01 * lit.mean());
+  EXPECT_GT(lit.mean(), 0.5 * sphere);
+}
+
+// A case-D suffix x_i -> x_j -> exit -> directional light on the sphere, with the manifold
+// strategy running at x_j.
+SneeSuffix manifold_suffix(TestRng& rng, bool x_i_medium, bool* ok) {
+  const Vec3 light = sample_uniform_sphere(rng.uniform2());
+  SneeSuffix s;
+  s.x_i = random_inside(rng);
+  s.omega_in = sample_uniform_sphere(rng.uniform2());
+  s.x_j = random_inside(rng);
+  const SphereExits exits = sphere_exits_toward_light(kCentre, kRadius, kEta, light, s.x_j);
+  *ok = exits.count > 0;
+  if (!*ok) return s;
+  s.x_k = exits.exit[0].y;
+  s.n_k = exits.exit[0].n;
+  s.omega_o = light;
+  s.medium = {Rgb(2.0f), Rgb(2.02f), 0.3f};
+  s.interface = {kEta, 0.0f};
+  s.light_pdf = 0.5f;
+  s.light_delta = true;
+  s.light_distant = true;
+  s.v_first = rng.uniform() < 0.7f;
+  s.x_i_medium = x_i_medium;
+  s.x_j_medium = true;
+  s.manifold = true;
+  s.boundary_curvature = 1.0f / kRadius;
+  return s;
+}
+
+TEST(ManifoldSphere, WeightsWithTopToBottomSumToOne) {
+  TestRng rng(5);
+  for (const MisHeuristic h : {MisHeuristic::kBalance, MisHeuristic::kPower}) {
+    SneeOptions options;
+    options.heuristic = h;
+    int shared = 0;
+    for (int k = 0; k < 20000; ++k) {
+      const bool x_i_medium = rng.uniform() < 0.8f;
+      bool ok = false;
+      SneeSuffix s = manifold_suffix(rng, x_i_medium, &ok);
+      if (!ok) continue;
+      const StrategyPdfs p = strategy_pdfs(s, options);
+      const double w_tb = mis_weight(Strategy::kTopToBottom, p, options);
+      const double w_mn = mis_weight(Strategy::kManifold, p, options);
+      for (const Strategy st : {Strategy::kBottomToTop, Strategy::kUnidirectionalBsdf,
+                                Strategy::kUnidirectionalLight}) {
+        ASSERT_EQ(mis_weight(st, p, options), 0.0);
+      }
+      ASSERT_GT(w_mn, 0.0);
+      ASSERT_NEAR(w_tb + w_mn, 1.0, 1e-9);
+      if (snee_can_produce(s)) {
+        ASSERT_GT(w_tb, 0.0);
+        ASSERT_EQ(p[Strategy::kManifold], manifold_pdf(s));
+        ++shared;
+      } else {
+        ASSERT_EQ(w_mn, 1.0);  // a surface x_i or V_first = 0: nothing else can make it
+      }
+      // Where the manifold strategy does not run (the walk's depth limit), TB takes it all.
+      s.manifold = false;
+      const StrategyPdfs alone = strategy_pdfs(s, options);
+      ASSERT_EQ(mis_weight(Strategy::kManifold, alone, options), 0.0);
+      if (snee_can_produce(s)) {
+        ASSERT_EQ(mis_weight(Strategy::kTopToBottom, alone, options), 1.0);
+      }
+    }
+    EXPECT_GT(shared, 5000);
+  }
+}
+
+// Disabled in the handled class, the manifold strategy still takes the suffixes nothing else can
+// make (a surface x_i), like the tracer's own strategies (StrategySet).
+TEST(ManifoldSphere, IsolationOnlyRedistributesTheHandledClass) {
+  TestRng rng(6);
+  SneeOptions tb_only;
+  tb_only.enabled = StrategySet::only(Strategy::kTopToBottom);
+  for (int k = 0; k < 2000; ++k) {
+    bool ok = false;
+    SneeSuffix s = manifold_suffix(rng, true, &ok);
+    if (!ok) continue;
+    s.v_first = true;
+    const StrategyPdfs handled = strategy_pdfs(s, tb_only);
+    ASSERT_EQ(mis_weight(Strategy::kManifold, handled, tb_only), 0.0);
+    ASSERT_EQ(mis_weight(Strategy::kTopToBottom, handled, tb_only), 1.0);
+    s.x_i_medium = false;
+    ASSERT_EQ(mis_weight(Strategy::kManifold, strategy_pdfs(s, tb_only), tb_only), 1.0);
+  }
+}
+
+}  // namespace
+}  // namespace snee
