@@ -19,6 +19,7 @@
 #include "apps/render_settings.h"
 #include "apps/resolution.h"
 #include "apps/stats_json.h"
+#include "scene/aov_selection.h"
 #include "scene/scene_loader.h"
 
 namespace snee {
@@ -220,6 +221,22 @@ void RenderCommand::add_image_options(CLI::App& c) {
                "fireflies and energy with them; recorded as snee:sample_clamp in the EXR) "
                "[default: off]")
       ->check(finite_positive())
+      ->group(group);
+  c.add_option_function<std::string>(
+       "--aov", [this](const std::string& text) { options_.aovs = parse_aov_list(text); },
+       "Denoiser layers in the EXR, a comma-separated list of albedo (albedo.R/G/B), normal "
+       "(N.X/Y/Z, world space) and depth (Z): those of the first non-specular hit, seen through "
+       "smooth dielectrics; the beauty image stays the same [default: none]")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            try {
+              parse_aov_list(text);
+              return std::string();
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+          },
+          "LIST"))
       ->group(group);
 }
 

@@ -80,6 +80,7 @@ ExrAttributes render_settings_attributes(const std::string& scene_spec, const Lo
       {"samples_per_unit", options.samples_per_unit},
       {"threads", options.threads},
       {"sample_clamp", options.sample_clamp},
+      {"aovs", aov_list(options.aovs)},
       {"snee_options", snee_options_json(options.snee)},
       {"preview",
        {{"tone_curve", tone.curve == ToneCurve::kFilmic ? "filmic" : "clamp"},

@@ -33,8 +33,9 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
     const simd::Vec3Batch d = camera_direction(camera, px, py, r.u[0], r.u[1]);
     chunk.store(state.pixel, pixel);
     chunk.store(state.sample, sample);
-    for (uint32_t* field : {state.event, state.depth, state.flags})
-      chunk.store(field, UintBatch(0u));
+    for (uint32_t* field : {state.event, state.depth}) chunk.store(field, UintBatch(0u));
+    chunk.store(state.flags, UintBatch(ctx.record_aovs ? uint32_t{kPathAovOpen} : 0u));
+    if (ctx.record_aovs) chunk.store(state.aov_depth, FloatBatch(0.0f));
     chunk.store(state.medium, IntBatch(-1));
     for (float* field :
          {state.throughput_r, state.throughput_g, state.throughput_b, state.eta_scale})

@@ -112,6 +112,8 @@ struct KernelContext {
   // Each sample's RGB is clipped to this before it reaches the film (0: never). Biased: it
   // trades the energy of rare bright paths (fireflies) for less variance.
   float sample_clamp = 0.0f;
+  // Paths record their first non-specular hit's albedo, normal and depth (first_hit_aovs.h).
+  bool record_aovs = false;
   float epsilon;
   // Pinhole camera basis: direction = forward + (2x-1) right + (1-2y) up for x,y in [0,1).
   Vec3 camera_origin, camera_forward, camera_right, camera_up;

@@ -2,6 +2,7 @@
 
 #include "kernels/batched_pass.h"
 #include "kernels/exit_event.h"
+#include "kernels/first_hit_aovs.h"
 #include "kernels/medium/free_flight.h"
 #include "kernels/medium/henyey_greenstein.h"
 #include "kernels/medium_lanes.h"
@@ -125,6 +126,15 @@ Vec3 keep_clear_of_boundary(const KernelContext& ctx, const PathState& state, ui
   return depth < ctx.epsilon ? x + into_medium * (ctx.epsilon - depth) : x;
 }
 
+// The AOV albedo of a medium vertex (first_hit_aovs.h), which has no surface: sigma_s / sigma_t
+// per channel, 0 in a channel that does not interact (spectral MIS may scatter following
+// another). Its AOV normal faces back along the arriving ray.
+Rgb single_scattering_albedo(const MediumInfo& m) {
+  Rgb a(0.0f);
+  for (int c = 0; c < 3; ++c) a[c] = m.sigma_t[c] > 0 ? m.sigma_s[c] / m.sigma_t[c] : 0.0f;
+  return a;
+}
+
 }  // namespace
 
 // Two passes: the flights of the whole queue in SIMD chunks (fly), then, per slot in queue
@@ -156,6 +166,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     state.depth[s] += 1;
     state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
     state.push_vertex(s, x, w_before, true);
+    close_aov_chain(state, s, flights.t[k], single_scattering_albedo(m), -w_before);
     if (static_cast<int>(state.depth[s]) >= ctx.max_depth || is_black(state.throughput(s))) {
       q.retire.push(s);
       continue;

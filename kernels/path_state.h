@@ -20,6 +20,7 @@ enum PathFlags : uint32_t {
   kPathMediumVertexI = 1u << 1,  // the vertex before it, x_i, was a medium scattering vertex
   kPathAfterSneeExit = 1u << 2,  // the ray left a medium by an exit SNEE competes with
   kPathLightSkipped = 1u << 3,   // "sla": any light this ray reaches was counted by NEE
+  kPathAovOpen = 1u << 4,        // AOVs: the camera ray's specular chain has not ended yet
 };
 
 // X(type, name): one SoA array per field.
@@ -48,7 +49,10 @@ enum PathFlags : uint32_t {
   X(uint32_t, exit_geom)                           /* SNEE exit memory: the exit surface */    \
   X(float, exit_xi_x) X(float, exit_xi_y) X(float, exit_xi_z)     /* x_i of the exit's suffix */ \
   X(float, exit_win_x) X(float, exit_win_y) X(float, exit_win_z)  /* arriving at that x_i */   \
-  X(float, exit_nk_x) X(float, exit_nk_y) X(float, exit_nk_z)     /* normal at the exit x_k */
+  X(float, exit_nk_x) X(float, exit_nk_y) X(float, exit_nk_z)     /* normal at the exit x_k */ \
+  X(float, aov_albedo_r) X(float, aov_albedo_g) X(float, aov_albedo_b) /* first_hit_aovs.h */  \
+  X(float, aov_normal_x) X(float, aov_normal_y) X(float, aov_normal_z)                         \
+  X(float, aov_depth)
 // clang-format on
 
 struct PathState {

@@ -5,6 +5,7 @@
 #include "kernels/bsdf/dielectric.h"
 #include "kernels/bsdf/diffuse.h"
 #include "kernels/exit_event.h"
+#include "kernels/first_hit_aovs.h"
 #include "kernels/path_ops.h"
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/philox_batch.h"
@@ -201,12 +202,22 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       // An index-matched boundary only changes the medium; the ray goes on unchanged (and what
       // its last real vertex remembered stays valid).
       state.medium[s] = medium_after_crossing(ctx, geom, d, n);
+      extend_aov_chain(state, s, state.hit_t[s]);
       state.set_ray(s, offset_origin(p, n, d, ctx.epsilon), d);
       state.event[s] += 1;
       q.extend.push(s);
       continue;
     }
     state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
+    const bool delta_bsdf = info.kind == MaterialKind::kDielectric && info.dielectric.delta();
+    if (delta_bsdf) {
+      extend_aov_chain(state, s, state.hit_t[s]);
+    } else {
+      // A rough dielectric is colourless: white albedo. The normal faces the arriving ray.
+      close_aov_chain(state, s, state.hit_t[s],
+                      info.kind == MaterialKind::kDiffuse ? info.albedo : Rgb(1.0f),
+                      dot(d, n) > 0 ? -n : n);
+    }
 
     // The exit-event bookkeeping of SNEE needs the vertices before this one.
     const ExitEvent exit = make_exit_event(ctx, state, s, p, n, geom);
@@ -222,7 +233,6 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     const Vec3 shading_n = two_sided_flip ? -n : n;
     const Frame frame = Frame::from_normal(shading_n);
     const Vec3 wo_local = frame.to_local(-d);
-    const bool delta_bsdf = info.kind == MaterialKind::kDielectric && info.dielectric.delta();
     if (!delta_bsdf && !ctx.lights->empty() && !exit.light_handled_elsewhere) {
       surface_nee(ctx, state, s, p, n, frame, wo_local, info, q.shadow,
                   exit.snee_possible ? &exit : nullptr,

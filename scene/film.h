@@ -34,6 +34,11 @@ struct Film {
   std::vector<Rgb> variance_of_mean;  // per channel, sample variance / spp
   // Samples each pixel holds; empty when the image does not say (every pixel has meta.min_spp).
   std::vector<uint32_t> pixel_spp;
+  // Denoiser AOVs of the first non-specular hit, each the mean over the pixel's samples like
+  // `mean` (docs/output-images.md); each empty when the render was not asked for it.
+  std::vector<Rgb> albedo;
+  std::vector<Vec3> normal;  // world space, facing the arriving ray
+  std::vector<float> depth;  // distance along the camera ray and its specular chain
   FilmMetadata meta;
   Rgb& at(int x, int y) { return mean[static_cast<size_t>(y) * width + x]; }
   const Rgb& at(int x, int y) const { return mean[static_cast<size_t>(y) * width + x]; }
@@ -43,7 +48,8 @@ struct Film {
 using ExrAttributes = std::vector<std::pair<std::string, std::string>>;
 
 // Writes a linear float EXR with channels R,G,B and variance.R/G/B, a channel "spp" when the
-// pixels' sample counts differ, and the metadata as "snee:*" attributes, then `extra`. Throws
+// pixels' sample counts differ, albedo.R/G/B, N.X/Y/Z and Z for the AOVs the film holds, and
+// the metadata as "snee:*" attributes, then `extra`. Throws
 // std::runtime_error naming the file on failure.
 void write_exr(const Film& film, const std::string& path, const ExrAttributes& extra = {});
 // Writes an 8-bit preview through `tone` (default: clamped, exposure 0, sRGB encoded); format

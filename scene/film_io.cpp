@@ -9,7 +9,9 @@
 // EXR has no 64-bit integer attribute), snee:version (string) and "Software". When the pixels'
 // sample counts differ (adaptive sampling, an interrupted render) a FLOAT channel "spp" holds
 // each pixel's (exact up to 2^24); snee:time_budget_seconds and snee:noise_target (double) are
-// written only for a render that ran under them (docs/budgets.md).
+// written only for a render that ran under them (docs/budgets.md). The denoiser AOVs, when the
+// film holds them, are FLOAT channels "albedo.R/G/B" (layer albedo), "N.X/Y/Z" (layer N, the
+// world-space normal) and "Z" (the depth, the EXR convention's depth channel).
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -33,6 +35,9 @@ namespace {
 constexpr std::array<const char*, 6> kChannels = {"R",          "G",          "B",
                                                   "variance.R", "variance.G", "variance.B"};
 constexpr const char* kSppChannel = "spp";
+constexpr std::array<const char*, 3> kAlbedoChannels = {"albedo.R", "albedo.G", "albedo.B"};
+constexpr std::array<const char*, 3> kNormalChannels = {"N.X", "N.Y", "N.Z"};
+constexpr const char* kDepthChannel = "Z";
 
 [[noreturn]] void fail(const std::string& what, const std::string& path, const std::string& why) {
   throw std::runtime_error(what + " '" + path + "': " + (why.empty() ? "unknown error" : why));
@@ -67,6 +72,11 @@ size_t pixel_count(const Film& film) {
   return static_cast<size_t>(film.width) * static_cast<size_t>(film.height);
 }
 
+std::array<int, 3> channel_indices(const OIIO::ImageSpec& spec,
+                                   const std::array<const char*, 3>& names) {
+  return {spec.channelindex(names[0]), spec.channelindex(names[1]), spec.channelindex(names[2])};
+}
+
 void check_film(const Film& film, const std::string& path) {
   if (film.width <= 0 || film.height <= 0 || film.mean.size() != pixel_count(film))
     fail("cannot write image", path, "film has no pixels or inconsistent size");
@@ -79,10 +89,21 @@ void write_exr(const Film& film, const std::string& path, const ExrAttributes& e
   const bool has_variance = film.variance_of_mean.size() == film.mean.size();
   const bool has_spp = film.pixel_spp.size() == film.mean.size() && spp_varies(film);
   const int colour_channels = has_variance ? 6 : 3;
-  const int nchannels = colour_channels + (has_spp ? 1 : 0);
+  const bool has_albedo = film.albedo.size() == film.mean.size();
+  const bool has_normal = film.normal.size() == film.mean.size();
+  const bool has_depth = film.depth.size() == film.mean.size();
+  const int nchannels = colour_channels + (has_spp ? 1 : 0) + (has_albedo ? 3 : 0) +
+                        (has_normal ? 3 : 0) + (has_depth ? 1 : 0);
   OIIO::ImageSpec spec(film.width, film.height, nchannels, OIIO::TypeDesc::FLOAT);
   spec.channelnames.assign(kChannels.begin(), kChannels.begin() + colour_channels);
   if (has_spp) spec.channelnames.emplace_back(kSppChannel);
+  if (has_albedo)
+    spec.channelnames.insert(spec.channelnames.end(), kAlbedoChannels.begin(),
+                             kAlbedoChannels.end());
+  if (has_normal)
+    spec.channelnames.insert(spec.channelnames.end(), kNormalChannels.begin(),
+                             kNormalChannels.end());
+  if (has_depth) spec.channelnames.emplace_back(kDepthChannel);
   spec.attribute("compression", "zip");
   spec.attribute("Software", "snee " SNEE_VERSION);
   spec.attribute("snee:version", SNEE_VERSION);
@@ -104,6 +125,11 @@ void write_exr(const Film& film, const std::string& path, const ExrAttributes& e
     if (has_variance)
       for (int c = 0; c < 3; ++c) pixels.push_back(film.variance_of_mean[i][c]);
     if (has_spp) pixels.push_back(static_cast<float>(film.pixel_spp[i]));
+    if (has_albedo)
+      for (int c = 0; c < 3; ++c) pixels.push_back(film.albedo[i][c]);
+    if (has_normal)
+      for (int c = 0; c < 3; ++c) pixels.push_back(film.normal[i][c]);
+    if (has_depth) pixels.push_back(film.depth[i]);
   }
   auto out = create_output(path);
   write_pixels(*out, spec, path, OIIO::TypeDesc::FLOAT, pixels.data());
@@ -148,6 +174,11 @@ Film read_exr(const std::string& path) {
   }
   const bool has_variance = index[3] >= 0 && index[4] >= 0 && index[5] >= 0;
   const int spp_index = spec.channelindex(kSppChannel);
+  const std::array<int, 3> albedo_index = channel_indices(spec, kAlbedoChannels);
+  const std::array<int, 3> normal_index = channel_indices(spec, kNormalChannels);
+  const bool has_albedo = albedo_index[0] >= 0 && albedo_index[1] >= 0 && albedo_index[2] >= 0;
+  const bool has_normal = normal_index[0] >= 0 && normal_index[1] >= 0 && normal_index[2] >= 0;
+  const int depth_index = spec.channelindex(kDepthChannel);
 
   std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
@@ -159,12 +190,18 @@ Film read_exr(const std::string& path) {
   film.mean.resize(pixel_count(film));
   if (has_variance) film.variance_of_mean.resize(pixel_count(film));
   if (spp_index >= 0) film.pixel_spp.resize(pixel_count(film));
+  if (has_albedo) film.albedo.resize(pixel_count(film));
+  if (has_normal) film.normal.resize(pixel_count(film));
+  if (depth_index >= 0) film.depth.resize(pixel_count(film));
   for (size_t i = 0; i < pixel_count(film); ++i) {
     const float* px = &pixels[i * spec.nchannels];
     for (int c = 0; c < 3; ++c) {
       film.mean[i][c] = px[index[c]];
       if (has_variance) film.variance_of_mean[i][c] = px[index[c + 3]];
+      if (has_albedo) film.albedo[i][c] = px[albedo_index[c]];
+      if (has_normal) film.normal[i][c] = px[normal_index[c]];
     }
+    if (depth_index >= 0) film.depth[i] = px[depth_index];
     if (spp_index >= 0) {
       const float spp = px[spp_index];
       if (!(spp >= 0 && spp < 4294967296.0f) || spp != std::floor(spp))

@@ -21,7 +21,8 @@ void run_units_breadth_first(const KernelContext& ctx, const UnitSource& source,
       idle.pop_back();
       lane_units[lane] = source.grid.unit(*k);
       lane_unit_index[lane] = *k;
-      start_work_unit(lane_units[lane], source.film.buffer(*k), *lanes[lane]);
+      start_work_unit(lane_units[lane], source.film.buffer(*k), *lanes[lane],
+                      source.film.aov_buffer(*k));
       busy.push_back(lane);
     }
   };

@@ -19,8 +19,9 @@ void run_units_depth_first(const KernelContext& ctx, const UnitSource& source, i
             const WorkUnit unit = source.grid.unit(*k);
             // A stop drops the unit in flight rather than waiting for it: with many threads
             // per core, or costly units, finishing them could take minutes.
-            if (!run_work_unit(ctx, unit, ws, source.film.buffer(*k),
-                               [&] { return source.progress.stop_requested(); })) {
+            if (!run_work_unit(
+                    ctx, unit, ws, source.film.buffer(*k),
+                    [&] { return source.progress.stop_requested(); }, source.film.aov_buffer(*k))) {
               source.window.abort();
               break;
             }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernels/first_hit_aovs.h"
 #include "scheduler/noise_target.h"
 
 namespace snee {
@@ -23,6 +24,16 @@ FilmAccumulator::FilmAccumulator(const UnitGrid& grid, int width, int height, si
 
 Rgb* FilmAccumulator::buffer(size_t unit) {
   return buffers_.data() + (unit % buffer_count_) * buffer_size_;
+}
+
+void FilmAccumulator::keep_aovs() {
+  aov_buffers_.assign(buffers_.size() * kAovFloats, 0.0f);
+  aov_sum_.assign(sum_.size() / 3 * kAovFloats, 0.0);
+}
+
+float* FilmAccumulator::aov_buffer(size_t unit) {
+  if (aov_buffers_.empty()) return nullptr;
+  return aov_buffers_.data() + (unit % buffer_count_) * buffer_size_ * kAovFloats;
 }
 
 void FilmAccumulator::add(size_t unit) {
@@ -85,6 +96,33 @@ void FilmAccumulator::add_to_sums(size_t k) {
       }
     }
   }
+  if (!aov_sum_.empty()) add_aovs_to_sums(k);
+}
+
+void FilmAccumulator::add_aovs_to_sums(size_t k) {
+  const WorkUnit u = grid_.unit(k);
+  const float* samples = aov_buffer(k);
+  const int tile_w = u.x1 - u.x0;
+  const size_t pixels = static_cast<size_t>(u.pixel_count());
+  for (uint32_t s = 0; s < u.sample_end - u.sample_begin; ++s) {
+    for (int y = u.y0; y < u.y1; ++y) {
+      for (int x = u.x0; x < u.x1; ++x) {
+        const float* v =
+            samples +
+            (s * pixels + static_cast<size_t>((y - u.y0) * tile_w + (x - u.x0))) * kAovFloats;
+        double* sum = aov_sum_.data() + (static_cast<size_t>(y) * width_ + x) * kAovFloats;
+        for (size_t c = 0; c < kAovFloats; ++c) sum[c] += v[c];
+      }
+    }
+  }
+}
+
+void FilmAccumulator::resolve_aovs(size_t p, uint32_t spp, Film& film) const {
+  const double* sum = aov_sum_.data() + p * kAovFloats;
+  const auto mean = [&](size_t c) { return static_cast<float>(sum[c] / spp); };
+  film.albedo[p] = {mean(0), mean(1), mean(2)};
+  film.normal[p] = {mean(3), mean(4), mean(5)};
+  film.depth[p] = mean(6);
 }
 
 uint32_t FilmAccumulator::tile_spp(const Tile& tile) const {
@@ -125,6 +163,11 @@ Film FilmAccumulator::resolve(const FilmMetadata& meta) const {
   film.mean.assign(pixel_count, Rgb(0.0f));
   film.variance_of_mean.assign(pixel_count, Rgb(0.0f));
   film.pixel_spp.assign(pixel_count, 0);
+  if (!aov_sum_.empty()) {
+    film.albedo.assign(pixel_count, Rgb(0.0f));
+    film.normal.assign(pixel_count, Vec3{});
+    film.depth.assign(pixel_count, 0.0f);
+  }
   uint32_t min_spp = grid_.spp();
   for (size_t t = 0; t < grid_.tile_count(); ++t) {
     Tile& tile = tiles_[t];
@@ -143,6 +186,7 @@ Film FilmAccumulator::resolve(const FilmMetadata& meta) const {
           film.variance_of_mean[p][c] = static_cast<float>(variance_of_mean[c]);
         }
         film.pixel_spp[p] = spp;
+        if (!aov_sum_.empty()) resolve_aovs(p, spp, film);
       }
     }
   }

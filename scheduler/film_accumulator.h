@@ -29,6 +29,13 @@ class FilmAccumulator {
 
   // Where unit k writes its samples: (sample - sample_begin) * pixel_count + local_pixel.
   Rgb* buffer(size_t unit);
+  // Keeps the denoiser AOVs too (kernels/first_hit_aovs.h): their sums follow the radiance's,
+  // sample order included, and resolve() fills Film::albedo, normal and depth. Call it before
+  // any unit is added.
+  void keep_aovs();
+  // Where unit k writes its samples' AOVs, kAovFloats per sample in the order of buffer();
+  // null unless keep_aovs() was called.
+  float* aov_buffer(size_t unit);
   // Unit k has finished writing its buffer; adds it (and any parked successors of its tile) to
   // the sums, or parks it. Thread-safe; call it before the window learns the unit finished.
   void add(size_t unit);
@@ -59,6 +66,8 @@ class FilmAccumulator {
     bool converged = false;      // met the noise target: takes no more chunks
   };
   void add_to_sums(size_t unit);
+  void add_aovs_to_sums(size_t unit);
+  void resolve_aovs(size_t pixel, uint32_t spp, Film& film) const;
   uint32_t tile_spp(const Tile& tile) const;
   // Mean and variance of the mean of pixel p over its first n samples (n >= 1).
   void estimate(size_t p, uint32_t n, double mean[3], double variance_of_mean[3]) const;
@@ -71,6 +80,8 @@ class FilmAccumulator {
   std::vector<Rgb> buffers_;
   std::unique_ptr<Tile[]> tiles_;
   std::vector<double> sum_, sum_sq_;  // 3 per pixel
+  std::vector<float> aov_buffers_;    // empty without keep_aovs()
+  std::vector<double> aov_sum_;       // kAovFloats per pixel
 };
 
 }  // namespace snee

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernels/first_hit_aovs.h"
 #include "kernels/lights/light_table.h"
 #include "kernels/simd/arch.h"
 #include "scene/embree_scene.h"
@@ -75,7 +76,7 @@ constexpr size_t kUnitsInFlightPerThread = 32;
 // The global schedule keeps this many units per thread in flight.
 constexpr size_t kGlobalLanesPerThread = 8;
 
-// A workspace's path state, queues and scratch per slot: 2.4 KiB measured in this build (192
+// A workspace's path state, queues and scratch per slot: 2.4 KiB measured in this build (220
 // bytes of it PathState), rounded up so that the queues may grow a little before this is wrong.
 constexpr uint64_t kWorkspaceBytesPerSlot = 4096;
 // A tile's place in the unit grid and its lock and parked-unit list in the film.
@@ -90,8 +91,11 @@ uint64_t render_memory_bytes(const Scene& scene, const RenderOptions& o, int thr
   const uint64_t height = static_cast<uint64_t>(scene.camera.height);
   const uint64_t tile = static_cast<uint64_t>(o.tile_size);
   const uint64_t pixels = saturating_multiply(width, height);
+  // AOVs: kAovFloats sums per pixel, their resolved layers and kAovFloats floats per sample.
+  const uint64_t aov_floats = o.aovs.any() ? kAovFloats : 0;
   const uint64_t film =
-      saturating_multiply(pixels, 6 * sizeof(double) + 2 * sizeof(Rgb) + sizeof(uint32_t));
+      saturating_multiply(pixels, (6 + aov_floats) * sizeof(double) + 2 * sizeof(Rgb) +
+                                      sizeof(uint32_t) + aov_floats * sizeof(float));
   const uint64_t tiles = ((width + tile - 1) / tile) * ((height + tile - 1) / tile) /
                              static_cast<uint64_t>(o.shard_count) +
                          1;
@@ -102,8 +106,8 @@ uint64_t render_memory_bytes(const Scene& scene, const RenderOptions& o, int thr
   const uint64_t unit_samples = saturating_multiply(
       std::min(tile, width) * std::min(tile, height),
       std::min(static_cast<uint64_t>(o.spp), static_cast<uint64_t>(o.samples_per_unit)));
-  const uint64_t buffers =
-      saturating_multiply(saturating_multiply(lead, unit_samples), sizeof(Rgb));
+  const uint64_t buffers = saturating_multiply(saturating_multiply(lead, unit_samples),
+                                               sizeof(Rgb) + aov_floats * sizeof(float));
   const uint64_t workspaces_count =
       threads + (schedule == Schedule::kGlobal ? kGlobalLanesPerThread * threads : 0);
   const uint64_t slots = schedule == Schedule::kMegakernel ? 1 : o.queue_capacity;
@@ -155,6 +159,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
                     options.snee);
   ctx.sample_clamp = options.sample_clamp;
+  ctx.record_aovs = options.aovs.any();
   const auto sampling_start = std::chrono::steady_clock::now();
   const double sampling_cpu_start = cpu_seconds();
 
@@ -174,6 +179,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
     for (const TileState& t : resume->tiles) rounds_begun = std::max(rounds_begun, t.chunks);
     resumed_seconds = resume->seconds;
   }
+  if (options.aovs.any()) film_sums.keep_aovs();
   FilmMetadata meta;
   meta.integrator = integrator_name(integrator);
   meta.seed = options.seed;
@@ -208,6 +214,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   if (hooks.checkpoint_state) result.state = unit_progress.state();
   result.film = film_sums.resolve(meta);
   Film& film = result.film;
+  // All three are recorded together (they end at one vertex); only the chosen ones are kept.
+  if (!options.aovs.albedo) film.albedo.clear();
+  if (!options.aovs.normal) film.normal.clear();
+  if (!options.aovs.depth) film.depth.clear();
   // Complete: every tile holds the rounds it was to take, or has met the noise target.
   result.complete = film_sums.tiles_done(time_budget.rounds(grid.chunk_count()));
   result.time_budget_spent = time_budget.spent();

@@ -12,6 +12,7 @@
 #include "kernels/snee/snee_options.h"
 #include "kernels/snee_counters.h"
 #include "kernels/stage_table.h"
+#include "scene/aov_selection.h"
 #include "scene/film.h"
 #include "scene/memory_budget.h"
 #include "scene/scene.h"
@@ -63,6 +64,9 @@ struct RenderOptions {
   // Clip each sample's RGB radiance to this before it is averaged (0: off). Biased: the image
   // no longer converges to the true one; `snee render --clamp`.
   float sample_clamp = 0.0f;
+  // Denoiser AOV layers of the film (`snee render --aov`); recording them leaves the beauty
+  // image bitwise unchanged.
+  AovSelection aovs;
   // The film, sample buffers and workspaces together must fit, or render() refuses before
   // allocating any of them.
   MemoryBudget memory_budget;

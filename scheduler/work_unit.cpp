@@ -4,6 +4,8 @@
 #include <chrono>
 #include <type_traits>
 
+#include "kernels/first_hit_aovs.h"
+
 namespace snee {
 
 namespace {
@@ -99,7 +101,13 @@ void retire(const KernelContext& ctx, UnitWorkspace& ws) {
     const uint32_t pixel = state.pixel[s];
     const int x = static_cast<int>(pixel % static_cast<uint32_t>(ctx.width)) - unit.x0;
     const int y = static_cast<int>(pixel / static_cast<uint32_t>(ctx.width)) - unit.y0;
-    ws.out[(state.sample[s] - unit.sample_begin) * pixels + row_major_index(x, y, tile_w)] = l;
+    const size_t index =
+        (state.sample[s] - unit.sample_begin) * pixels + row_major_index(x, y, tile_w);
+    ws.out[index] = l;
+    if (ws.aov_out && ctx.record_aovs) {
+      const std::array<float, kAovFloats> aovs = aov_sample(state, s);
+      std::copy(aovs.begin(), aovs.end(), ws.aov_out + index * kAovFloats);
+    }
     ws.free_slots.push_back(s);
   }
   ws.active -= retired.size();
@@ -144,9 +152,10 @@ UnitWorkspace::UnitWorkspace(size_t slot_count)
   new_samples.reserve(slots);
 }
 
-void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws) {
+void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws, float* aov_out) {
   ws.unit = &unit;
   ws.out = out;
+  ws.aov_out = aov_out;
   ws.next_sample = 0;
   ws.active = 0;
   ws.rays_at_start = rays_traced(ws.counters);
@@ -174,8 +183,8 @@ void run_stage(const KernelContext& ctx, Stage stage, UnitWorkspace& ws) {
 }
 
 bool run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace& ws, Rgb* out,
-                   const std::function<bool()>& give_up) {
-  start_work_unit(unit, out, ws);
+                   const std::function<bool()>& give_up, float* aov_out) {
+  start_work_unit(unit, out, ws, aov_out);
   while (!work_unit_finished(ws)) {
     if (give_up()) return false;
     for (const Stage stage : kStageLoop) run_stage(ctx, stage, ws);

@@ -45,8 +45,9 @@ struct UnitWorkspace {
   // The unit in progress.
   const WorkUnit* unit = nullptr;
   Rgb* out = nullptr;
-  size_t next_sample = 0;  // samples of the unit started so far
-  size_t active = 0;       // slots holding a path
+  float* aov_out = nullptr;  // kAovFloats per sample, laid out as `out`; null: no AOVs
+  size_t next_sample = 0;    // samples of the unit started so far
+  size_t active = 0;         // slots holding a path
   uint64_t rays_at_start = 0;
   uint64_t nonfinite_at_start = 0;
 
@@ -62,8 +63,9 @@ struct UnitWorkspace {
 };
 
 // Makes `unit` the workspace's current unit; its samples go to
-// out[(sample - sample_begin) * pixel_count + local_pixel].
-void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws);
+// out[(sample - sample_begin) * pixel_count + local_pixel], and their AOVs (when the context
+// records them) to the kAovFloats floats from aov_out + that index * kAovFloats.
+void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws, float* aov_out = nullptr);
 bool work_unit_finished(const UnitWorkspace& ws);
 // Runs one stage of the current unit's loop (a turn is kStageLoop in order); a stage whose
 // input is empty is skipped.
@@ -71,7 +73,7 @@ void run_stage(const KernelContext& ctx, Stage stage, UnitWorkspace& ws);
 // Runs a unit turn after turn until it is complete (returns true) or `give_up`, asked before
 // every turn, says true (returns false; the unit's samples so far are not usable).
 bool run_work_unit(const KernelContext& ctx, const WorkUnit& unit, UnitWorkspace& ws, Rgb* out,
-                   const std::function<bool()>& give_up);
+                   const std::function<bool()>& give_up, float* aov_out = nullptr);
 
 uint64_t rays_traced(const KernelCounters& counters);
 

@@ -41,8 +41,12 @@ bool join_shards(RenderResult& result, int& exit_status, double timeout_seconds,
   MPI_Comm_rank(comm, &rank);
   Reductions join(rank, comm);
   // An Rgb is three packed floats, so each film plane reduces as one float array.
-  for (std::vector<Rgb>* plane : {&result.film.mean, &result.film.variance_of_mean})
+  // The AOV planes are empty unless the render keeps them (so they reduce nothing).
+  for (std::vector<Rgb>* plane :
+       {&result.film.mean, &result.film.variance_of_mean, &result.film.albedo, &result.film.normal})
     join.reduce_in_place(plane->data(), static_cast<int>(3 * plane->size()), MPI_FLOAT, MPI_SUM);
+  join.reduce_in_place(result.film.depth.data(), static_cast<int>(result.film.depth.size()),
+                       MPI_FLOAT, MPI_SUM);
   join.reduce_in_place(result.film.pixel_spp.data(), static_cast<int>(result.film.pixel_spp.size()),
                        MPI_UINT32_T, MPI_SUM);
 

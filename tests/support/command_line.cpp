@@ -31,6 +31,14 @@ int run_command(const std::string& command, const std::filesystem::path& log) {
   return exit_code(status);
 }
 
+int run_in_directory(const std::filesystem::path& dir, const std::string& program,
+                     const std::string& args, std::string& output) {
+  const std::filesystem::path log = dir / "output.txt";
+  const int code = run_command("cd '" + dir.string() + "' && '" + program + "' " + args, log);
+  output = read_text_file(log);
+  return code;
+}
+
 bool wait_for(const std::function<bool()>& condition, std::chrono::seconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!condition()) {

@@ -17,6 +17,10 @@ std::string read_text_file(const std::filesystem::path& path);
 // Runs `command` through /bin/sh with stdin from /dev/null and stdout and stderr into `log`;
 // returns its exit code (128 + the signal number if a signal ended it).
 int run_command(const std::string& command, const std::filesystem::path& log);
+// Runs `program args` from directory `dir` as run_command does, its output (stdout and stderr,
+// through dir/output.txt) into `output`; returns its exit code.
+int run_in_directory(const std::filesystem::path& dir, const std::string& program,
+                     const std::string& args, std::string& output);
 
 // Polls `condition` until it holds or `timeout` passes; returns whether it held. Generous
 // timeouts only: they bound a hang, never measure speed.
