@@ -263,6 +263,12 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   if (distribution.shard_count > 1 && options.time_seconds > 0)
     throw std::invalid_argument(
         "--time is not available when the render is split across processes");
+  // The saved state holds the radiance sums only: resumed layers would average part of the
+  // samples over all of them.
+  if (!resume_.empty() && options.aovs.any())
+    throw std::invalid_argument(
+        "--aov is not available with --resume: the checkpoint state holds no AOV layers "
+        "(docs/resume.md)");
   const bool shows_progress = !quiet_ && distribution.shard == 0;
   if (!given("--spp")) options.spp = scene.render.spp;
   if (!given("--max-depth")) options.max_depth = scene.render.max_depth;

@@ -1,6 +1,7 @@
 // `snee render --aov` as a user meets it: the chosen layers appear in the EXR under their
 // channel names (albedo.R/G/B, N.X/Y/Z, Z) and are recorded in the settings, a render without
-// --aov has none of them, and an unknown or repeated name is refused with the valid names.
+// --aov has none of them, an unknown or repeated name is refused with the valid names, and so
+// is --aov with --resume.
 #include <algorithm>
 #include <filesystem>
 #include <string>
@@ -92,6 +93,17 @@ TEST_F(AovCli, BadListsAreRefused) {
   EXPECT_NE(snee(std::string("render ") + kTiny + " --aov '' -o x.exr"), 0);
   EXPECT_NE(output_.find("unknown AOV ''"), std::string::npos) << output_;
   EXPECT_FALSE(fs::exists(dir_ / "x.exr"));
+}
+
+// The checkpoint state holds no layers, so a resumed render could only average them over part
+// of its samples: refused before anything renders.
+TEST_F(AovCli, ResumeWithAovIsRefused) {
+  ASSERT_EQ(snee(std::string("render ") + kTiny + " --checkpoint 100 -o c.exr"), 0) << output_;
+  ASSERT_TRUE(fs::exists(dir_ / "c.exr.checkpoint"));
+  const auto before = fs::last_write_time(dir_ / "c.exr");
+  EXPECT_NE(snee(std::string("render ") + kTiny + " --resume c.exr --aov albedo"), 0);
+  EXPECT_NE(output_.find("--aov is not available with --resume"), std::string::npos) << output_;
+  EXPECT_EQ(fs::last_write_time(dir_ / "c.exr"), before);
 }
 
 }  // namespace
