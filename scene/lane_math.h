@@ -1,8 +1,8 @@
 // The few operations the physics needs beyond + - * / and comparisons, for code written once
 // over its lane type F: float for the scalar functions, an xsimd float batch for the batched
 // kernels (kernels/simd/), double where a test oracle wants one. A lane-generic function brings
-// them in with `using namespace lane;` and calls select and sqrt unqualified: the scalar
-// overloads here are found by ordinary lookup, xsimd's by argument-dependent lookup on the
+// them in with `using namespace lane;` and calls select, sqrt, exp and log1p unqualified: the
+// scalar overloads here are found by ordinary lookup, xsimd's by argument-dependent lookup on the
 // batch, so this header needs no xsimd and snee_physics stays free of it. Both sides of a
 // select are computed; the scalar overloads give exactly what the branch they replace gave,
 // since every operation here is exact or correctly rounded.
@@ -32,6 +32,13 @@ inline float sqrt(float x) {
 }
 inline double sqrt(double x) {
   return std::sqrt(x);
+}
+
+inline float exp(float x) {
+  return std::exp(x);
+}
+inline float log1p(float x) {
+  return std::log1p(x);
 }
 
 // std::clamp's exact semantics (a NaN passes through), which min/max instructions do not keep.
