@@ -82,6 +82,16 @@ void check_film(const Film& film, const std::string& path) {
     fail("cannot write image", path, "film has no pixels or inconsistent size");
 }
 
+// The film's mean radiance as interleaved R,G,B values, each channel through `encode`.
+template <typename T, typename Encode>
+std::vector<T> interleaved_mean(const Film& film, Encode encode) {
+  std::vector<T> pixels;
+  pixels.reserve(pixel_count(film) * 3);
+  for (const Rgb& rgb : film.mean)
+    for (int c = 0; c < 3; ++c) pixels.push_back(encode(rgb[c]));
+  return pixels;
+}
+
 }  // namespace
 
 void write_exr(const Film& film, const std::string& path, const ExrAttributes& extra) {
@@ -139,11 +149,8 @@ void write_preview(const Film& film, const std::string& path, const ToneMap& ton
   check_film(film, path);
   OIIO::ImageSpec spec(film.width, film.height, 3, OIIO::TypeDesc::UINT8);
   spec.attribute("Software", "snee " SNEE_VERSION);
-  std::vector<uint8_t> pixels;
-  pixels.reserve(pixel_count(film) * 3);
-  for (const Rgb& rgb : film.mean)
-    for (int c = 0; c < 3; ++c)
-      pixels.push_back(static_cast<uint8_t>(std::lround(tone.encode(rgb[c]) * 255.0f)));
+  const std::vector<uint8_t> pixels = interleaved_mean<uint8_t>(
+      film, [&](float v) { return static_cast<uint8_t>(std::lround(tone.encode(v) * 255.0f)); });
   auto out = create_output(path);
   write_pixels(*out, spec, path, OIIO::TypeDesc::UINT8, pixels.data());
 }
@@ -152,10 +159,7 @@ void write_hdr(const Film& film, const std::string& path) {
   check_film(film, path);
   OIIO::ImageSpec spec(film.width, film.height, 3, OIIO::TypeDesc::FLOAT);
   spec.attribute("Software", "snee " SNEE_VERSION);
-  std::vector<float> pixels;
-  pixels.reserve(pixel_count(film) * 3);
-  for (const Rgb& rgb : film.mean)
-    for (int c = 0; c < 3; ++c) pixels.push_back(rgb[c]);
+  const std::vector<float> pixels = interleaved_mean<float>(film, [](float v) { return v; });
   auto out = create_output(path);
   write_pixels(*out, spec, path, OIIO::TypeDesc::FLOAT, pixels.data());
 }
