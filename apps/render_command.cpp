@@ -143,8 +143,9 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->check(finite_positive());
   c.add_option("--noise-target", options_.noise_target,
                "Adaptive sampling: each tile takes rounds until every pixel's relative standard "
-               "error of luminance is at most REL, up to --spp (docs/budgets.md)")
-      ->check(finite_positive());
+               "error of luminance is at most REL, up to --spp; 0 turns off a target the scene "
+               "sets in render.noise_target (docs/budgets.md)")
+      ->check(finite_at_least(0));
   c.add_flag("-q,--quiet", quiet_, "No progress output while rendering");
   c.add_option_function<std::string>(
        "--max-memory",
@@ -274,6 +275,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   if (!given("--max-depth")) options.max_depth = scene.render.max_depth;
   if (!given("--seed")) options.seed = scene.render.seed;
   if (!given("--integrator")) options.integrator = scene.render.integrator;
+  if (!given("--noise-target")) options.noise_target = scene.render.noise_target;
   if (const auto size = parse_resolution(resolution_)) {
     // fov_y_degrees is vertical, so a new aspect ratio widens or narrows the view sideways.
     scene.camera.width = size->width;

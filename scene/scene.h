@@ -122,6 +122,8 @@ struct RenderSettings {
   int max_depth = 1024;
   uint32_t seed = 0;
   std::string integrator = "pt";
+  // Adaptive sampling's relative standard error (docs/budgets.md); 0: every pixel takes spp.
+  double noise_target = 0;
 };
 
 struct Scene {

@@ -434,7 +434,7 @@ class SceneReader {
   }
 
   void read_render(const JsonValue& value) {
-    const JsonObject obj = value.object({"spp", "max_depth", "seed", "integrator"});
+    const JsonObject obj = value.object({"spp", "max_depth", "seed", "integrator", "noise_target"});
     RenderSettings& render = out_.scene.render;
     if (auto spp = obj.optional("spp")) render.spp = static_cast<int>(spp->integer(1, INT32_MAX));
     if (auto depth = obj.optional("max_depth")) {
@@ -444,14 +444,19 @@ class SceneReader {
       render.seed = static_cast<uint32_t>(seed->integer(0, UINT32_MAX));
     }
     if (auto integrator = obj.optional("integrator")) render.integrator = integrator->string();
+    if (auto target = obj.optional("noise_target"))
+      render.noise_target = target->number(kNonNegative);
   }
 
   json canonical_render() const {
     const RenderSettings& render = out_.scene.render;
-    return {{"spp", render.spp},
-            {"max_depth", render.max_depth},
-            {"seed", render.seed},
-            {"integrator", render.integrator}};
+    json canonical = {{"spp", render.spp},
+                      {"max_depth", render.max_depth},
+                      {"seed", render.seed},
+                      {"integrator", render.integrator}};
+    // Written only when set, so the scene hash of a scene without one stays what it was.
+    if (render.noise_target > 0) canonical["noise_target"] = render.noise_target;
+    return canonical;
   }
 
   // Definitions in the top-level lists must be named; one written inline in a shape may be, and

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -42,6 +45,7 @@ bool has_channel(const std::string& exr, const char* name) {
 TEST_F(BudgetsCli, TimeBudgetStopsWithWholeRoundsAndHonestMetadata) {
   const std::string exr = path("timed.exr");
   ASSERT_EQ(snee("render builtin:default --resolution 32x24 --spp 100000000 --time 0.1 "
+                 "--noise-target 0 "
                  "--samples-per-unit 4 --quiet -o " +
                  exr),
             0)
@@ -81,9 +85,55 @@ TEST_F(BudgetsCli, NoiseTargetWritesTheSampleCountChannel) {
   EXPECT_LE(most, 64u);
 }
 
+// A small translucent sphere; `render` is the scene's render block.
+std::string sphere_scene(const std::string& render) {
+  // Wide enough that the corner tiles see only black background and stop early.
+  return R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "fov": 70,
+                        "resolution": [32, 32]},
+             "render": )" +
+         render + R"(,
+             "shapes": [{"type": "sphere", "medium": {"sigma_s": 3, "sigma_a": 0.1},
+                         "material": {"type": "dielectric", "ior": 1.5, "roughness": 0.2}}],
+             "lights": [{"type": "directional", "direction": [-0.4, 0.7, 0.5],
+                         "irradiance": 3}]})";
+}
+
+// The scene's render.noise_target is the same target as --noise-target: the same pixels and
+// sample counts. --noise-target 0 turns the scene's off, so every pixel takes --spp.
+TEST_F(BudgetsCli, SceneNoiseTargetActsAsTheOptionAndZeroTurnsItOff) {
+  auto write = [&](const std::string& name, const std::string& render) {
+    std::ofstream(path(name)) << sphere_scene(render);
+  };
+  write("with_target.json", R"({"spp": 64, "integrator": "snee", "noise_target": 0.1})");
+  write("without.json", R"({"spp": 64, "integrator": "snee"})");
+  const std::string common = " --tile-size 8 --quiet -o ";
+  ASSERT_EQ(snee("render with_target.json" + common + path("scene.exr")), 0) << output();
+  ASSERT_EQ(snee("render without.json --noise-target 0.1" + common + path("option.exr")), 0)
+      << output();
+  ASSERT_EQ(snee("render with_target.json --noise-target 0" + common + path("off.exr")), 0)
+      << output();
+
+  const Film from_scene = read_exr(path("scene.exr"));
+  const Film from_option = read_exr(path("option.exr"));
+  EXPECT_EQ(from_scene.meta.noise_target, 0.1);
+  ASSERT_FALSE(from_scene.pixel_spp.empty()) << "the target should have stopped some tiles";
+  EXPECT_EQ(from_scene.pixel_spp, from_option.pixel_spp);
+  EXPECT_EQ(from_scene.mean, from_option.mean);
+  EXPECT_EQ(from_scene.variance_of_mean, from_option.variance_of_mean);
+
+  const Film off = read_exr(path("off.exr"));
+  EXPECT_EQ(off.meta.noise_target, 0.0);
+  EXPECT_EQ(off.meta.min_spp, 64);
+  EXPECT_TRUE(off.pixel_spp.empty());
+  EXPECT_FALSE(has_channel(path("off.exr"), "spp"));
+}
+
 TEST_F(BudgetsCli, BadValuesAreErrors) {
-  for (const char* option : {"--time", "--noise-target"}) {
-    for (const char* value : {"0", "-1", "nan"}) {
+  const std::pair<const char*, std::vector<const char*>> cases[] = {
+      {"--time", {"0", "-1", "nan", "inf"}},
+      {"--noise-target", {"-1", "nan", "inf"}}};  // 0 turns a scene's target off
+  for (const auto& [option, values] : cases) {
+    for (const char* value : values) {
       const std::string args =
           std::string("render --resolution 4x4 --quiet ") + option + " " + value;
       EXPECT_NE(snee(args), 0) << args;

@@ -119,7 +119,8 @@ json full_scene() {
     "name": "everything",
     "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "up": [0, 1, 0], "fov": 35,
                "resolution": [64, 48]},
-    "render": {"spp": 16, "max_depth": 100, "seed": 7, "integrator": "snee"},
+    "render": {"spp": 16, "max_depth": 100, "seed": 7, "integrator": "snee",
+               "noise_target": 0.02},
     "materials": [
       {"name": "glass", "type": "dielectric", "ior": 1.33, "roughness": 0.04},
       {"name": "white", "type": "diffuse", "albedo": [0.8, 0.7, 0.6]},
@@ -222,6 +223,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.render.max_depth, b.render.max_depth);
   EXPECT_EQ(a.render.seed, b.render.seed);
   EXPECT_EQ(a.render.integrator, b.render.integrator);
+  EXPECT_EQ(a.render.noise_target, b.render.noise_target);
 }
 
 // Loads the canonical document again (from another directory, so relative paths would break)
@@ -250,6 +252,7 @@ TEST_F(SceneLoaderTest, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.render.max_depth, 100);
   EXPECT_EQ(s.render.seed, 7u);
   EXPECT_EQ(s.render.integrator, "snee");
+  EXPECT_EQ(s.render.noise_target, 0.02);
 
   ASSERT_EQ(s.materials.size(), 4u);  // three named, one inline
   EXPECT_EQ(s.materials[0].kind, MaterialKind::kDielectric);
@@ -362,6 +365,7 @@ TEST_F(SceneLoaderTest, MinimalSceneGetsDefaults) {
   EXPECT_EQ(s.camera.fov_y_degrees, 40.0f);
   EXPECT_EQ(s.render.spp, 64);
   EXPECT_EQ(s.render.integrator, "pt");
+  EXPECT_EQ(s.render.noise_target, 0.0);
   EXPECT_EQ(s.shapes[0].center, Vec3(0.0f));
   EXPECT_EQ(s.shapes[0].radius, 1.0f);
   EXPECT_EQ(s.materials[0].albedo, Rgb(0.5f));
@@ -619,6 +623,10 @@ TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
       {"seed too large", "/render/seed", 4294967296u, "render.seed",
        "expected an integer in [0, 4294967295], got 4294967296"},
       {"empty integrator", "/render/integrator", "", "render.integrator", "a non-empty string"},
+      {"negative noise target", "/render/noise_target", -0.1, "render.noise_target",
+       "expected a number >= 0"},
+      {"noise target not a number", "/render/noise_target", "low", "render.noise_target",
+       "expected a number >= 0"},
       {"shapes not a list", "/shapes", {{"type", "sphere"}}, "shapes", "expected an array"},
   };
   expect_errors(cases);
@@ -894,6 +902,9 @@ TEST(BuiltinScenes, DefaultBunnyStandsOnTheFloor) {
   EXPECT_EQ(s.materials[s.shapes[1].material].kind, MaterialKind::kDiffuse);
   const Medium& jade = s.media[s.shapes[0].interior_medium];
   EXPECT_LE(max_component(jade.sigma_s / jade.sigma_t()), 0.99f);
+  // It shows what snee is for, finished by the noise target rather than a fixed count.
+  EXPECT_EQ(s.render.integrator, "snee");
+  EXPECT_GT(s.render.noise_target, 0.0);
 }
 
 TEST(BuiltinScenes, ProceduralSkyIsLowFrequencyAndBrightAbove) {
