@@ -164,7 +164,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.camera.position, b.camera.position);
   EXPECT_EQ(a.camera.look_at, b.camera.look_at);
   EXPECT_EQ(a.camera.up, b.camera.up);
-  EXPECT_EQ(a.camera.fov_y_degrees, b.camera.fov_y_degrees);
+  EXPECT_EQ(a.camera.fov_degrees, b.camera.fov_degrees);
   EXPECT_EQ(a.camera.width, b.camera.width);
   EXPECT_EQ(a.camera.height, b.camera.height);
   ASSERT_EQ(a.materials.size(), b.materials.size());
@@ -245,7 +245,7 @@ TEST_F(SceneLoaderTest, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.name, "everything");
   EXPECT_EQ(s.camera.width, 64);
   EXPECT_EQ(s.camera.height, 48);
-  EXPECT_EQ(s.camera.fov_y_degrees, 35.0f);
+  EXPECT_EQ(s.camera.fov_degrees, 35.0f);
   EXPECT_EQ(s.render.spp, 16);
   EXPECT_EQ(s.render.max_depth, 100);
   EXPECT_EQ(s.render.seed, 7u);
@@ -359,7 +359,7 @@ TEST_F(SceneLoaderTest, MinimalSceneGetsDefaults) {
   const Scene& s = loaded.scene;
   EXPECT_EQ(s.name, "scene");
   EXPECT_EQ(s.camera.width, 256);
-  EXPECT_EQ(s.camera.fov_y_degrees, 40.0f);
+  EXPECT_EQ(s.camera.fov_degrees, 40.0f);
   EXPECT_EQ(s.render.spp, 64);
   EXPECT_EQ(s.render.integrator, "pt");
   EXPECT_EQ(s.shapes[0].center, Vec3(0.0f));
@@ -853,7 +853,7 @@ TEST(BuiltinScenes, GridLightsMatchThePaper) {
       EXPECT_EQ(directional.camera.width, 128);
       // The unit-radius object spans about 60% of the vertical field of view.
       const float distance = length(directional.camera.position);
-      const float span = 2 * std::atan(1 / distance) * 180 / kPi / directional.camera.fov_y_degrees;
+      const float span = 2 * std::atan(1 / distance) * 180 / kPi / directional.camera.fov_degrees;
       EXPECT_NEAR(span, 0.6f, 0.05f);
     }
   }
