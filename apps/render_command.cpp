@@ -104,7 +104,7 @@ RenderCommand::RenderCommand(CLI::App& parent)
       });
   c.add_option("--stats", stats_, "Also write render statistics as JSON to this file");
   c.add_option("--resolution", resolution_,
-               "Image size WxH, overriding the camera's (keeps its vertical field of view)")
+               "Image size WxH, overriding the camera's (keeps its field of view along fov_axis)")
       ->check(resolution_validator());
   c.add_option("--max-depth", options_.max_depth,
                "Maximum scattering events per path [default: the scene's, else 1024]")
@@ -277,7 +277,8 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   if (!given("--integrator")) options.integrator = scene.render.integrator;
   if (!given("--noise-target")) options.noise_target = scene.render.noise_target;
   if (const auto size = parse_resolution(resolution_)) {
-    // fov_y_degrees is vertical, so a new aspect ratio widens or narrows the view sideways.
+    // The field of view is kept along the camera's fov_axis; the other edge follows the new
+    // aspect ratio.
     scene.camera.width = size->width;
     scene.camera.height = size->height;
   }

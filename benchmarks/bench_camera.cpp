@@ -1,5 +1,5 @@
 // Camera-path generation for one queue of slots: the scalar loop the renderer used before
-// (random_block + camera_direction per slot) against the batched generate_camera_rays. Argument
+// (random_block + camera_ray per slot) against the batched generate_camera_rays. Argument
 // 0: slots 0, 1, 2, ... as a fresh work unit hands them out (vector stores); 1: shuffled slots,
 // as they come back from retired paths (scatter stores).
 #include <benchmark/benchmark.h>
@@ -47,7 +47,7 @@ struct CameraFixture {
 };
 
 void generate_scalar(CameraFixture& f) {
-  const PinholeCamera camera = pinhole_camera(f.ctx);
+  const FilmCamera camera = film_camera(f.ctx);
   PathState& st = f.state;
   for (size_t i = 0; i < bench::kItems; ++i) {
     const uint32_t s = f.slots[i];
@@ -61,7 +61,8 @@ void generate_scalar(CameraFixture& f) {
     st.eta_scale[s] = 1.0f;
     const RandomBlock r =
         random_block(f.ctx.seed, f.pixels[i], f.samples[i], 0, RngPurpose::kCamera);
-    st.set_ray(s, camera.origin, camera_direction(camera, f.pixels[i], r.u[0], r.u[1]));
+    const CameraRayOf<float> ray = camera_ray(camera, f.pixels[i], r);
+    st.set_ray(s, ray.origin, ray.direction);
     f.queues.extend.push(s);
   }
 }

@@ -9,15 +9,16 @@
 
 namespace snee {
 
-// Batched: each lane computes exactly what random_block and camera_direction compute for its
-// slot (tests/test_camera_batch.cpp), so images do not depend on the batch width.
+// Batched: each lane computes what random_block and camera_ray compute for its slot, exactly for
+// a pinhole (tests/test_camera_batch.cpp); lanes are independent, so images do not depend on
+// the batch width. A pinhole leaves the lens numbers u[2], u[3] unused.
 void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint32_t* slots,
                           const uint32_t* pixels, const uint32_t* samples, size_t n, StageQueues& q,
                           KernelCounters& counters) {
   using simd::FloatBatch;
   using simd::IntBatch;
   using simd::UintBatch;
-  const PinholeCamera camera = pinhole_camera(ctx);
+  const FilmCamera camera = film_camera(ctx);
   for (size_t begin = 0; begin < n; begin += simd::kLanes) {
     const size_t count = std::min(simd::kLanes, n - begin);
     const simd::SlotChunk chunk(slots + begin, count);
@@ -30,7 +31,16 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
     const simd::QuotientRemainder row_col = simd::divide(pixel, camera.width);
     const FloatBatch px = xsimd::to_float(xsimd::bitwise_cast<IntBatch>(row_col.remainder));
     const FloatBatch py = xsimd::to_float(xsimd::bitwise_cast<IntBatch>(row_col.quotient));
-    const simd::Vec3Batch d = camera_direction(camera, px, py, r.u[0], r.u[1]);
+    simd::Vec3Batch o = splat<FloatBatch>(camera.frame.origin);
+    simd::Vec3Batch d;
+    if (camera.frame.thin_lens) {
+      const CameraRayOf<FloatBatch> ray =
+          thin_lens_ray(camera, px, py, r.u[0], r.u[1], r.u[2], r.u[3]);
+      o = ray.origin;
+      d = ray.direction;
+    } else {
+      d = camera_direction(camera, px, py, r.u[0], r.u[1]);
+    }
     chunk.store(state.pixel, pixel);
     chunk.store(state.sample, sample);
     for (uint32_t* field : {state.event, state.depth}) chunk.store(field, UintBatch(0u));
@@ -45,9 +55,9 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
     // Spectral MIS starts with every colour channel equally likely to be the path's hero.
     for (float* field : {state.channel_p_r, state.channel_p_g, state.channel_p_b})
       chunk.store(field, FloatBatch(1.0f / 3.0f));
-    chunk.store(state.origin_x, FloatBatch(camera.origin.x));
-    chunk.store(state.origin_y, FloatBatch(camera.origin.y));
-    chunk.store(state.origin_z, FloatBatch(camera.origin.z));
+    chunk.store(state.origin_x, o.x);
+    chunk.store(state.origin_y, o.y);
+    chunk.store(state.origin_z, o.z);
     chunk.store(state.dir_x, d.x);
     chunk.store(state.dir_y, d.y);
     chunk.store(state.dir_z, d.z);

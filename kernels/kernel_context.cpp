@@ -84,6 +84,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       max_depth(max_depth_),
       snee(snee_),
       epsilon(e.ray_epsilon()),
+      camera(camera_frame(s.camera)),
       width(s.camera.width),
       height(s.camera.height) {
   media.reserve(s.media.size());
@@ -119,16 +120,6 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       m.manifold_unsupported = true;
     }
   }
-  const Camera& c = s.camera;
-  const Vec3 forward = normalize(c.look_at - c.position);
-  const Vec3 right = normalize(cross(forward, c.up));
-  const Vec3 up = cross(right, forward);
-  const float tan_half = std::tan(0.5f * c.fov_y_degrees * kPi / 180.0f);
-  const float aspect = static_cast<float>(c.width) / static_cast<float>(c.height);
-  camera_origin = c.position;
-  camera_forward = forward;
-  camera_right = right * (tan_half * aspect);
-  camera_up = up * tan_half;
 }
 
 }  // namespace snee

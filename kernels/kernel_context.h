@@ -11,6 +11,7 @@
 #include "kernels/lights/light_table.h"
 #include "kernels/snee/snee_options.h"
 #include "kernels/snee_counters.h"
+#include "scene/camera_frame.h"
 #include "scene/embree_scene.h"
 #include "scene/scene.h"
 
@@ -115,8 +116,7 @@ struct KernelContext {
   // Paths record their first non-specular hit's albedo, normal and depth (first_hit_aovs.h).
   bool record_aovs = false;
   float epsilon;
-  // Pinhole camera basis: direction = forward + (2x-1) right + (1-2y) up for x,y in [0,1).
-  Vec3 camera_origin, camera_forward, camera_right, camera_up;
+  CameraFrame camera;
   int width, height;
 };
 

@@ -11,7 +11,7 @@ namespace snee {
 
 // What a block of four numbers is used for within one path event; each purpose owns its block.
 enum class RngPurpose : uint32_t {
-  kCamera,       // pixel jitter
+  kCamera,       // pixel jitter (2), thin-lens position (2)
   kFreeFlight,   // channel, distance
   kPhase,        // scattering direction
   kBsdf,         // lobe, microfacet normal

@@ -6,21 +6,10 @@
 namespace snee {
 
 Vec3 sample_cosine_hemisphere(Vec2 u) {
-  // Shirley-Chiu concentric mapping keeps strata compact, then Malley's projection to the
-  // hemisphere makes the density cos(theta)/pi.
-  const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
-  float r = 0, phi = 0;
-  if (a == 0 && b == 0) {
-    return {0, 0, 1};
-  } else if (std::fabs(a) > std::fabs(b)) {
-    r = a;
-    phi = (kPi / 4.0f) * (b / a);
-  } else {
-    r = b;
-    phi = (kPi / 2.0f) - (kPi / 4.0f) * (a / b);
-  }
-  const float x = r * std::cos(phi), y = r * std::sin(phi);
-  return {x, y, safe_sqrt(1.0f - x * x - y * y)};
+  // The concentric mapping keeps strata compact, then Malley's projection to the hemisphere
+  // makes the density cos(theta)/pi.
+  const Vec2 d = sample_concentric_disk(u);
+  return {d.x, d.y, safe_sqrt(1.0f - d.x * d.x - d.y * d.y)};
 }
 
 Vec3 sample_uniform_cone(Vec2 u, float cos_max) {

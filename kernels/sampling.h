@@ -4,6 +4,7 @@
 #pragma once
 
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "scene/math.h"
@@ -25,6 +26,27 @@ inline Vec3 sample_uniform_sphere(Vec2 u) {
 }
 inline constexpr float uniform_sphere_pdf() {
   return kInv4Pi;
+}
+
+// Shirley-Chiu concentric map of [0, 1)^2 onto the unit disk: area-preserving, so uniform
+// points give uniform disk points (density 1/pi), and it keeps strata compact. Each square ring
+// around the centre goes to a circle; both branches are computed and the selected one is the
+// scalar branch's exact result (the other may divide by zero).
+template <lane::Lane F>
+std::pair<F, F> sample_concentric_disk(F u0, F u1) {
+  using namespace lane;
+  const F a = F(2.0f) * u0 - F(1.0f), b = F(2.0f) * u1 - F(1.0f);
+  const auto wide = abs(a) > abs(b);
+  const F r = select(wide, a, b);
+  const F phi = select(wide, F(kPi / 4.0f) * (b / a), F(kPi / 2.0f) - F(kPi / 4.0f) * (a / b));
+  const auto [sin_phi, cos_phi] = sincos(phi);
+  // The centre, where phi is 0 / 0.
+  const auto centre = abs(a) + abs(b) == F(0.0f);
+  return {select(centre, F(0.0f), r * cos_phi), select(centre, F(0.0f), r * sin_phi)};
+}
+inline Vec2 sample_concentric_disk(Vec2 u) {
+  const auto [x, y] = sample_concentric_disk<float>(u.x, u.y);
+  return {x, y};
 }
 
 // Cosine-weighted hemisphere around +z.

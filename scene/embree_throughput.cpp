@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "scene/camera_frame.h"
+
 namespace snee {
 
 namespace {
@@ -43,14 +45,11 @@ RTCRayHit make_ray_hit(Vec3 o, Vec3 d) {
   return rh;
 }
 
-// Pinhole primary rays as the renderer's camera makes them, pixel by pixel in work-unit tile
+// Pinhole primary rays (the lens's spread does not matter to Embree's speed) through the
+// renderer's camera frame, pixel by pixel in work-unit tile
 // order; later rounds over the image are jittered within the pixel.
 std::vector<RTCRayHit> camera_rays(const Camera& c, size_t n, Random& rng) {
-  const Vec3 forward = normalize(c.look_at - c.position);
-  const Vec3 right = normalize(cross(forward, c.up));
-  const Vec3 up = cross(right, forward);
-  const float tan_half = std::tan(0.5f * c.fov_y_degrees * kPi / 180.0f);
-  const float aspect = static_cast<float>(c.width) / static_cast<float>(c.height);
+  const CameraFrame f = camera_frame(c);
   std::vector<RTCRayHit> rays;
   rays.reserve(n);
   for (bool first = true; rays.size() < n; first = false) {
@@ -61,8 +60,7 @@ std::vector<RTCRayHit> camera_rays(const Camera& c, size_t n, Random& rng) {
             const float jx = first ? 0.5f : uniform(rng), jy = first ? 0.5f : uniform(rng);
             const float sx = 2.0f * (static_cast<float>(x) + jx) / static_cast<float>(c.width) - 1;
             const float sy = 1 - 2.0f * (static_cast<float>(y) + jy) / static_cast<float>(c.height);
-            const Vec3 d =
-                normalize(forward + right * (sx * tan_half * aspect) + up * (sy * tan_half));
+            const Vec3 d = normalize(f.forward + f.right * sx + f.up * sy);
             rays.push_back(make_ray_hit(c.position, d));
           }
         }

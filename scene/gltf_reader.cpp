@@ -394,7 +394,7 @@ class GltfReader {
     const Vec3 forward = normalize(world.vector(Vec3(0, 0, -1)));
     camera.look_at = camera.position + forward;
     camera.up = normalize(world.vector(Vec3(0, 1, 0)));
-    camera.fov_y_degrees = static_cast<float>(fov_degrees);
+    camera.fov_degrees = static_cast<float>(fov_degrees);
     if (!is_finite(forward) || !is_finite(camera.up) ||
         !(length(cross(forward, camera.up)) > 1e-4f)) {
       fail(element, "the node's transform leaves the camera no viewing and up direction");

@@ -1,7 +1,7 @@
 // The few operations the physics needs beyond + - * / and comparisons, for code written once
 // over its lane type F: float for the scalar functions, an xsimd float batch for the batched
 // kernels (kernels/simd/), double where a test oracle wants one. A lane-generic function brings
-// them in with `using namespace lane;` and calls select, sqrt, exp and log1p unqualified: the
+// them in with `using namespace lane;` and calls select, sqrt, abs, exp and log1p unqualified: the
 // scalar overloads here are found by ordinary lookup, xsimd's by argument-dependent lookup on the
 // batch, so this header needs no xsimd and snee_physics stays free of it. Both sides of a
 // select are computed; the scalar overloads give exactly what the branch they replace gave,
@@ -32,6 +32,10 @@ inline float sqrt(float x) {
 }
 inline double sqrt(double x) {
   return std::sqrt(x);
+}
+
+inline float abs(float x) {
+  return std::fabs(x);
 }
 
 inline float exp(float x) {

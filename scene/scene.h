@@ -23,11 +23,21 @@ inline constexpr float kMaxCoordinate = 1e12f;
 // --resolution alike: a width * height pixel index (at most 2^30) fits an int.
 inline constexpr int kMaxImageEdge = 1 << 15;
 
+// The image edge a camera's field of view spans; the other edge follows from the aspect ratio,
+// so a new resolution keeps the angle along this one.
+enum class FovAxis : uint8_t { kVertical, kHorizontal, kDiagonal };
+
+// A thin lens: rays start on a disk of aperture_radius around position, perpendicular to the
+// viewing direction, and meet in the plane focus_distance in front of it. Aperture 0 is a
+// pinhole, and then focus_distance has no effect.
 struct Camera {
   Vec3 position{0, 0, 5};
   Vec3 look_at{0, 0, 0};
   Vec3 up{0, 1, 0};
-  float fov_y_degrees = 40.0f;  // vertical field of view
+  float fov_degrees = 40.0f;  // along fov_axis
+  FovAxis fov_axis = FovAxis::kVertical;
+  float aperture_radius = 0.0f;  // world units
+  float focus_distance = 0.0f;   // world units; 0: the distance from position to look_at
   int width = 256;
   int height = 256;
 };

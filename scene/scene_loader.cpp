@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 
+#include "scene/camera_frame.h"
 #include "scene/env_image_io.h"
 #include "scene/gltf_reader.h"
 #include "scene/input_file.h"
@@ -38,6 +39,8 @@ json to_json(const Transform& t) {
 // Relative indices of refraction beyond these are not materials; the bounds keep eta^2 and
 // 1 / eta^2 of the Fresnel and radiance-scaling terms far from float's limits.
 constexpr NumberRange kIorRange{1e-3, 1e3};
+// The widest thin lens relative to its focus distance.
+constexpr float kMaxApertureOverFocus = 1e6f;
 
 float degrees_to_radians(float degrees) {
   return degrees * (kPi / 180.0f);
@@ -248,7 +251,8 @@ class SceneReader {
   }
 
   void read_camera(const JsonValue& value) {
-    const JsonObject obj = value.object({"type", "position", "look_at", "up", "fov", "resolution"});
+    const JsonObject obj = value.object({"type", "position", "look_at", "up", "fov", "fov_axis",
+                                         "aperture_radius", "focus_distance", "resolution"});
     if (auto type = obj.optional("type")) type->choice({"pinhole"});
     Camera& camera = out_.scene.camera;
     const JsonValue position = obj.required("position");
@@ -274,17 +278,15 @@ class SceneReader {
         up->expected("a direction not parallel to the viewing direction");
       }
     }
-    if (auto fov = obj.optional("fov")) {
-      camera.fov_y_degrees = fov->real({0.0, 180.0, true, true});
-      // The image plane's half height, as the renderer computes it in float; for a subnormal
-      // fov it rounds to 0 and every pixel would see along the same ray.
-      const float tan_half = std::tan(0.5f * camera.fov_y_degrees * kPi / 180.0f);
-      if (!(tan_half > 0)) {
-        fov->expected(
-            "a number in (0, 180) whose half-angle tangent is positive in single "
-            "precision");
-      }
+    if (auto axis = obj.optional("fov_axis")) {
+      const std::string name = axis->choice({"vertical", "horizontal", "diagonal"});
+      camera.fov_axis = name == "horizontal" ? FovAxis::kHorizontal
+                        : name == "diagonal" ? FovAxis::kDiagonal
+                                             : FovAxis::kVertical;
     }
+    if (auto fov = obj.optional("fov")) read_fov(*fov, camera);
+    if (auto focus = obj.optional("focus_distance")) camera.focus_distance = focus->real(kPositive);
+    if (auto aperture = obj.optional("aperture_radius")) read_aperture(*aperture, camera);
     if (auto resolution = obj.optional("resolution")) {
       const std::vector<JsonValue> wh = resolution->array(2);
       camera.width = static_cast<int>(wh[0].integer(1, kMaxImageEdge));
@@ -293,13 +295,59 @@ class SceneReader {
     canonical_["camera"] = canonical_camera(camera, up_as_given);
   }
 
+  static void read_fov(const JsonValue& fov, Camera& camera) {
+    camera.fov_degrees = fov.real({0.0, 180.0, true, true});
+    // The image plane's half extent, as the renderer computes it in float; for a subnormal
+    // fov it rounds to 0 and every pixel would see along the same ray.
+    if (!(tan_half_angle(camera.fov_degrees) > 0)) {
+      fov.expected(
+          "a number in (0, 180) whose half-angle tangent is positive in single "
+          "precision");
+    }
+    // Along the horizontal or the diagonal the height follows from the aspect ratio, which
+    // --resolution may take to kMaxImageEdge : 1.
+    Camera widest = camera;
+    widest.width = kMaxImageEdge;
+    widest.height = 1;
+    if (camera.fov_axis != FovAxis::kVertical && !(image_half_extents(widest).y > 0)) {
+      fov.expected(
+          "a number in (0, 180) whose half-angle tangent, divided by the widest aspect ratio " +
+          std::to_string(kMaxImageEdge) + ", is positive in single precision");
+    }
+  }
+
+  // After the focus distance: the ratio of the two sets the rays' spread.
+  static void read_aperture(const JsonValue& aperture, Camera& camera) {
+    const float a = aperture.real(kNonNegative);
+    camera.aperture_radius = a;
+    const Vec3 p = camera.position;
+    if (!within_coordinate_bound({std::fabs(p.x) + a, std::fabs(p.y) + a, std::fabs(p.z) + a})) {
+      aperture.expected("a radius that keeps the lens around the camera position within +-" +
+                        describe_number(kMaxCoordinate));
+    }
+    // Directions leave the lens along (film offset) - (lens point) / focus distance; the bound
+    // keeps their squared length far inside float.
+    if (!(a <= kMaxApertureOverFocus * effective_focus_distance(camera))) {
+      aperture.expected("a radius at most " + describe_number(kMaxApertureOverFocus) +
+                        " times the focus distance (" +
+                        describe_number(effective_focus_distance(camera)) + ")");
+    }
+  }
+
+  // Keys beyond the pinhole's only where they differ from their defaults, so that the document,
+  // and with it the scene hash, of a scene without them stays what it was.
   static json canonical_camera(const Camera& camera, Vec3 up_as_given) {
-    return {{"type", "pinhole"},
-            {"position", to_json(camera.position)},
-            {"look_at", to_json(camera.look_at)},
-            {"up", to_json(up_as_given)},
-            {"fov", camera.fov_y_degrees},
-            {"resolution", json::array({camera.width, camera.height})}};
+    json c = {{"type", "pinhole"},
+              {"position", to_json(camera.position)},
+              {"look_at", to_json(camera.look_at)},
+              {"up", to_json(up_as_given)},
+              {"fov", camera.fov_degrees},
+              {"resolution", json::array({camera.width, camera.height})}};
+    if (camera.fov_axis == FovAxis::kHorizontal) c["fov_axis"] = "horizontal";
+    if (camera.fov_axis == FovAxis::kDiagonal) c["fov_axis"] = "diagonal";
+    if (camera.aperture_radius > 0) c["aperture_radius"] = camera.aperture_radius;
+    if (camera.focus_distance > 0) c["focus_distance"] = camera.focus_distance;
+    return c;
   }
 
   // A glTF asset placed in the scene: {"file", "transform", "resolution", "materials",

@@ -32,7 +32,7 @@ Scene facing_camera_scene(float distance, float fov_degrees, int resolution) {
   scene.camera.position = {0, 0, distance};
   scene.camera.look_at = {0, 0, 0};
   scene.camera.up = {0, 1, 0};
-  scene.camera.fov_y_degrees = fov_degrees;
+  scene.camera.fov_degrees = fov_degrees;
   scene.camera.width = scene.camera.height = resolution;
   return scene;
 }
@@ -63,7 +63,7 @@ struct FilmPoint {
 };
 FilmPoint film_point(const Scene& scene, double px, double py) {
   const Camera& c = scene.camera;
-  const double tan_half = std::tan(0.5 * c.fov_y_degrees * kPi / 180.0);
+  const double tan_half = std::tan(0.5 * c.fov_degrees * kPi / 180.0);
   const double aspect = static_cast<double>(c.width) / c.height;
   return {(2.0 * px / c.width - 1.0) * tan_half * aspect, (1.0 - 2.0 * py / c.height) * tan_half};
 }
@@ -261,7 +261,7 @@ Scene lit_translucent_scene() {
   milk.sigma_a = {0.2f, 0.1f, 0.05f};
   milk.g = 0.3f;
   Scene scene = glass_over_floor(1.4f, Rgb(0.6f), &milk);
-  scene.camera.fov_y_degrees = 40.0f;
+  scene.camera.fov_degrees = 40.0f;
   scene.camera.width = scene.camera.height = 16;
   Light env;
   env.kind = LightKind::kConstantEnv;

@@ -29,7 +29,7 @@ TEST(AreaLightRender, FloorUnderSquareEmitterMatchesClosedForm) {
   scene.camera.position = {0, 0.5f, 0};
   scene.camera.look_at = {0, 0, 0};
   scene.camera.up = {0, 0, -1};
-  scene.camera.fov_y_degrees = 2;
+  scene.camera.fov_degrees = 2;
   scene.camera.width = scene.camera.height = 8;
   Material floor_material;
   floor_material.albedo = Rgb(0.5f);

@@ -255,7 +255,7 @@ void expect_cube_asset(const GltfAsset& asset) {
   expect_near(asset.camera->position, Vec3(0.0f));
   expect_near(asset.camera->look_at, Vec3(0, 0, -1));
   expect_near(asset.camera->up, Vec3(0, 1, 0));
-  EXPECT_NEAR(asset.camera->fov_y_degrees, 0.5 * 180 / M_PI, 1e-4);
+  EXPECT_NEAR(asset.camera->fov_degrees, 0.5 * 180 / M_PI, 1e-4);
   EXPECT_FLOAT_EQ(asset.camera_aspect, 2.0f);
 
   ASSERT_EQ(asset.lights.size(), 2u);
@@ -297,7 +297,7 @@ TEST_F(GltfTest, GltfFileAloneIsAScene) {
   EXPECT_EQ(scene.lights.size(), 2u);
   // aspectRatio 2 at the default height.
   EXPECT_EQ(scene.camera.width, 2 * scene.camera.height);
-  EXPECT_NEAR(scene.camera.fov_y_degrees, 0.5 * 180 / M_PI, 1e-4);
+  EXPECT_NEAR(scene.camera.fov_degrees, 0.5 * 180 / M_PI, 1e-4);
 }
 
 TEST_F(GltfTest, SceneIncludesAssetWithOverridesAndReloadsCanonically) {

@@ -165,7 +165,10 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.camera.position, b.camera.position);
   EXPECT_EQ(a.camera.look_at, b.camera.look_at);
   EXPECT_EQ(a.camera.up, b.camera.up);
-  EXPECT_EQ(a.camera.fov_y_degrees, b.camera.fov_y_degrees);
+  EXPECT_EQ(a.camera.fov_degrees, b.camera.fov_degrees);
+  EXPECT_EQ(a.camera.fov_axis, b.camera.fov_axis);
+  EXPECT_EQ(a.camera.aperture_radius, b.camera.aperture_radius);
+  EXPECT_EQ(a.camera.focus_distance, b.camera.focus_distance);
   EXPECT_EQ(a.camera.width, b.camera.width);
   EXPECT_EQ(a.camera.height, b.camera.height);
   ASSERT_EQ(a.materials.size(), b.materials.size());
@@ -247,7 +250,7 @@ TEST_F(SceneLoaderTest, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.name, "everything");
   EXPECT_EQ(s.camera.width, 64);
   EXPECT_EQ(s.camera.height, 48);
-  EXPECT_EQ(s.camera.fov_y_degrees, 35.0f);
+  EXPECT_EQ(s.camera.fov_degrees, 35.0f);
   EXPECT_EQ(s.render.spp, 16);
   EXPECT_EQ(s.render.max_depth, 100);
   EXPECT_EQ(s.render.seed, 7u);
@@ -339,6 +342,27 @@ TEST_F(SceneLoaderTest, EveryFieldReachesTheScene) {
   EXPECT_TRUE(loaded.warnings.empty());
 }
 
+// The thin-lens keys and fov_axis reach the camera and its canonical document, which holds them
+// only where a scene gives them, so older scenes keep their document and hash.
+TEST_F(SceneLoaderTest, ThinLensAndFovAxisRoundTrip) {
+  const json& plain = load(full_scene()).canonical["camera"];
+  for (const char* key : {"fov_axis", "aperture_radius", "focus_distance"})
+    EXPECT_FALSE(plain.contains(key)) << key;
+  json doc = full_scene();
+  doc["camera"]["fov_axis"] = "horizontal";
+  doc["camera"]["aperture_radius"] = 0.25;
+  doc["camera"]["focus_distance"] = 3;
+  const LoadedScene lens = load(doc);
+  EXPECT_EQ(lens.scene.camera.fov_axis, FovAxis::kHorizontal);
+  EXPECT_EQ(lens.scene.camera.aperture_radius, 0.25f);
+  EXPECT_EQ(lens.scene.camera.focus_distance, 3.0f);
+  EXPECT_EQ(lens.canonical["camera"]["fov_axis"], "horizontal");
+  expect_round_trip(lens, scene_path());
+  // A subnormal fov that a vertical axis accepts leaves no height across a 32768:1 image.
+  doc["camera"]["fov"] = 1e-40;
+  expect_error(doc, "camera.fov", "divided by the widest aspect ratio 32768");
+}
+
 TEST_F(SceneLoaderTest, CanonicalDocumentRoundTrips) {
   const LoadedScene loaded = load(full_scene());
   expect_round_trip(loaded, scene_path());
@@ -362,7 +386,7 @@ TEST_F(SceneLoaderTest, MinimalSceneGetsDefaults) {
   const Scene& s = loaded.scene;
   EXPECT_EQ(s.name, "scene");
   EXPECT_EQ(s.camera.width, 256);
-  EXPECT_EQ(s.camera.fov_y_degrees, 40.0f);
+  EXPECT_EQ(s.camera.fov_degrees, 40.0f);
   EXPECT_EQ(s.render.spp, 64);
   EXPECT_EQ(s.render.integrator, "pt");
   EXPECT_EQ(s.render.noise_target, 0.0);
@@ -511,6 +535,18 @@ TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
        "expected a number in (0, 180), got \"wide\""},
       {"fov too large", "/camera/fov", 180, "camera.fov", "expected a number in (0, 180)"},
       {"fov zero", "/camera/fov", 0, "camera.fov", "expected a number in (0, 180)"},
+      {"unknown fov axis", "/camera/fov_axis", "sideways", "camera.fov_axis",
+       "expected one of: vertical, horizontal, diagonal"},
+      {"negative aperture", "/camera/aperture_radius", -1, "camera.aperture_radius",
+       "expected a number >= 0, got -1"},
+      {"lens beyond the coordinate bound", "/camera/aperture_radius", 1.5e12,
+       "camera.aperture_radius", "keeps the lens around the camera position within"},
+      {"aperture far wider than the focus distance", "/camera/aperture_radius", 1e7,
+       "camera.aperture_radius", "at most 1e+06 times the focus distance"},
+      {"zero focus distance", "/camera/focus_distance", 0, "camera.focus_distance",
+       "expected a number > 0, got 0"},
+      {"focus distance rounding to 0", "/camera/focus_distance", 1e-50, "camera.focus_distance",
+       "expected a number > 0"},
       {"zero width", "/camera/resolution/0", 0, "camera.resolution[0]",
        "expected an integer in [1, 32768], got 0"},
       {"fractional height", "/camera/resolution/1", 2.5, "camera.resolution[1]",
@@ -861,7 +897,7 @@ TEST(BuiltinScenes, GridLightsMatchThePaper) {
       EXPECT_EQ(directional.camera.width, 128);
       // The unit-radius object spans about 60% of the vertical field of view.
       const float distance = length(directional.camera.position);
-      const float span = 2 * std::atan(1 / distance) * 180 / kPi / directional.camera.fov_y_degrees;
+      const float span = 2 * std::atan(1 / distance) * 180 / kPi / directional.camera.fov_degrees;
       EXPECT_NEAR(span, 0.6f, 0.05f);
     }
   }

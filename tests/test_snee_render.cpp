@@ -239,7 +239,7 @@ std::vector<bool> sphere_mask_without_glint(const Scene& scene) {
   const Vec3 forward = normalize(c.look_at - c.position);
   const Vec3 right = normalize(cross(forward, c.up));
   const Vec3 up = cross(right, forward);
-  const float tan_half = std::tan(0.5f * c.fov_y_degrees * kPi / 180.0f);
+  const float tan_half = std::tan(0.5f * c.fov_degrees * kPi / 180.0f);
   const float aspect = static_cast<float>(c.width) / static_cast<float>(c.height);
   const Vec3 d = n - c.position;
   const float depth = dot(d, forward);

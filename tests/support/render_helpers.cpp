@@ -18,7 +18,7 @@ Scene sphere_scene(const Material& material, const Medium& medium, int resolutio
   scene.camera.position = {0, 0, 4};
   scene.camera.look_at = {0, 0, 0};
   scene.camera.up = {0, 1, 0};
-  scene.camera.fov_y_degrees = 35;
+  scene.camera.fov_degrees = 35;
   scene.camera.width = scene.camera.height = resolution;
   scene.materials.push_back(material);
   scene.media.push_back(medium);
@@ -59,7 +59,7 @@ std::vector<bool> sphere_mask(const Scene& scene) {
   const Vec3 forward = normalize(c.look_at - c.position);
   const Vec3 right = normalize(cross(forward, c.up));
   const Vec3 up = cross(right, forward);
-  const float tan_half = std::tan(0.5f * c.fov_y_degrees * kPi / 180.0f);
+  const float tan_half = std::tan(0.5f * c.fov_degrees * kPi / 180.0f);
   const float aspect = static_cast<float>(c.width) / static_cast<float>(c.height);
   auto hits = [&](float px, float py) {
     const float x = (2.0f * px / c.width - 1.0f) * tan_half * aspect;
