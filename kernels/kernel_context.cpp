@@ -97,7 +97,9 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                      {mat.ior, mat.roughness},
                      mat.albedo,
                      shape.interior_medium,
-                     !is_black(shape.emission)};
+                     !is_black(shape.emission),
+                     {mat.conductor_eta, mat.conductor_k, mat.roughness},
+                     {mat.albedo, mat.transmittance}};
     surfaces.push_back(info);
     if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
     if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {

@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "kernels/bsdf/conductor.h"
 #include "kernels/bsdf/dielectric.h"
+#include "kernels/bsdf/diffuse_transmission.h"
 #include "kernels/lights/light_table.h"
 #include "kernels/snee/snee_options.h"
 #include "kernels/snee_counters.h"
@@ -30,9 +32,16 @@ Integrator parse_integrator(const std::string& name);
 struct SurfaceInfo {
   MaterialKind kind;
   DielectricParams dielectric;
-  Rgb albedo;
+  Rgb albedo;               // diffuse
   int32_t interior_medium;  // medium entered when crossing against the outward normal
   bool emissive;
+  ConductorParams conductor;
+  DiffuseTransmissionParams sheet;
+  // A mirror or a smooth dielectric: no light sampling, no AOV vertex.
+  bool delta() const {
+    return (kind == MaterialKind::kDielectric && dielectric.delta()) ||
+           (kind == MaterialKind::kConductor && conductor.delta());
+  }
 };
 
 struct MediumInfo {

@@ -2,8 +2,11 @@
 #include <array>
 
 #include "kernels/batched_pass.h"
+#include "kernels/bsdf/conductor.h"
 #include "kernels/bsdf/dielectric.h"
 #include "kernels/bsdf/diffuse.h"
+#include "kernels/bsdf/diffuse_transmission.h"
+#include "kernels/bsdf/fresnel.h"
 #include "kernels/exit_event.h"
 #include "kernels/first_hit_aovs.h"
 #include "kernels/path_ops.h"
@@ -39,8 +42,7 @@ void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQue
     out.nx[k] = normal.x, out.ny[k] = normal.y, out.nz[k] = normal.z;
     out.eta[k] = lane_interface.eta, out.alpha[k] = lane_interface.alpha;
     // The per-slot pass samples a light at every surface but null and delta ones.
-    out.light_sampled[k] = info.kind != MaterialKind::kNull &&
-                           !(info.kind == MaterialKind::kDielectric && info.dielectric.delta());
+    out.light_sampled[k] = info.kind != MaterialKind::kNull && !info.delta();
   }
   for (size_t k = n; k < (n + simd::kLanes - 1) / simd::kLanes * simd::kLanes; ++k) {
     for (AlignedArray<float>* field :
@@ -113,6 +115,41 @@ BsdfSample batched_sample(const SurfaceResults& r, size_t k) {
   return bs;
 }
 
+// The first-hit albedo AOV: the diffuse colour, the metal's normal-incidence reflectance, the
+// sheet's reflectance plus transmittance; a rough dielectric is colourless (white).
+Rgb aov_albedo(const SurfaceInfo& info) {
+  switch (info.kind) {
+    case MaterialKind::kDiffuse:
+      return info.albedo;
+    case MaterialKind::kConductor:
+      return fresnel_conductor(1.0f, info.conductor.eta, info.conductor.k);
+    case MaterialKind::kDiffuseTransmission:
+      return info.sheet.reflectance + info.sheet.transmittance;
+    default:
+      return Rgb(1.0f);
+  }
+}
+
+// The BSDF sample of the surfaces the per-slot pass samples (all but the dielectric), in the
+// frame turned to wo's side, and its colour.
+BsdfSample sample_opaque(const SurfaceInfo& info, Vec3 wo_local, const RandomBlock& r, Rgb* tint) {
+  BsdfSample bs;
+  switch (info.kind) {
+    case MaterialKind::kConductor:
+      bs = conductor_sample(info.conductor, wo_local, {r.u[0], r.u[1]});
+      *tint = conductor_fresnel(info.conductor, wo_local, bs.wi);
+      break;
+    case MaterialKind::kDiffuseTransmission:
+      bs = diffuse_transmission_sample(info.sheet, wo_local, {r.u[0], r.u[1]}, r.u[2]);
+      *tint = diffuse_transmission_tint(info.sheet, wo_local, bs.wi);
+      break;
+    default:
+      bs = diffuse_sample(wo_local, {r.u[0], r.u[1]});
+      *tint = info.albedo;
+  }
+  return bs;
+}
+
 // Medium on the side of the surface that direction w points into.
 int32_t medium_on_side(const SurfaceInfo& info, Vec3 w, Vec3 n) {
   return dot(w, n) >= 0 ? -1 : info.interior_medium;
@@ -132,13 +169,25 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
   const Vec3 wi_local = frame.to_local(ls.wi);
   float f = 0, bsdf_pdf = 0;
   Rgb reflectance(1.0f);
-  if (info.kind == MaterialKind::kDiffuse) {
-    f = diffuse_eval(wo_local, wi_local);
-    bsdf_pdf = diffuse_pdf(wo_local, wi_local);
-    reflectance = info.albedo;
-  } else {
-    f = dielectric_eval(info.dielectric, wo_local, wi_local);
-    bsdf_pdf = dielectric_pdf(info.dielectric, wo_local, wi_local);
+  switch (info.kind) {
+    case MaterialKind::kDiffuse:
+      f = diffuse_eval(wo_local, wi_local);
+      bsdf_pdf = diffuse_pdf(wo_local, wi_local);
+      reflectance = info.albedo;
+      break;
+    case MaterialKind::kConductor:
+      f = conductor_eval(info.conductor, wo_local, wi_local);
+      bsdf_pdf = conductor_pdf(info.conductor, wo_local, wi_local);
+      reflectance = conductor_fresnel(info.conductor, wo_local, wi_local);
+      break;
+    case MaterialKind::kDiffuseTransmission:
+      f = diffuse_transmission_eval(wo_local, wi_local);
+      bsdf_pdf = diffuse_transmission_pdf(info.sheet, wo_local, wi_local);
+      reflectance = diffuse_transmission_tint(info.sheet, wo_local, wi_local);
+      break;
+    default:
+      f = dielectric_eval(info.dielectric, wo_local, wi_local);
+      bsdf_pdf = dielectric_pdf(info.dielectric, wo_local, wi_local);
   }
   if (f <= 0) return;
   const Rgb unweighted =
@@ -209,14 +258,12 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       continue;
     }
     state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
-    const bool delta_bsdf = info.kind == MaterialKind::kDielectric && info.dielectric.delta();
+    const bool delta_bsdf = info.delta();
     if (delta_bsdf) {
       extend_aov_chain(state, s, state.hit_t[s]);
     } else {
-      // A rough dielectric is colourless: white albedo. The normal faces the arriving ray.
-      close_aov_chain(state, s, state.hit_t[s],
-                      info.kind == MaterialKind::kDiffuse ? info.albedo : Rgb(1.0f),
-                      dot(d, n) > 0 ? -n : n);
+      // The normal faces the arriving ray.
+      close_aov_chain(state, s, state.hit_t[s], aov_albedo(info), dot(d, n) > 0 ? -n : n);
     }
 
     // The exit-event bookkeeping of SNEE needs the vertices before this one.
@@ -229,7 +276,8 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       continue;
     }
 
-    const bool two_sided_flip = info.kind == MaterialKind::kDiffuse && dot(d, n) > 0;
+    // Every surface but the dielectric interface scatters alike from both sides.
+    const bool two_sided_flip = info.kind != MaterialKind::kDielectric && dot(d, n) > 0;
     const Vec3 shading_n = two_sided_flip ? -n : n;
     const Frame frame = Frame::from_normal(shading_n);
     const Vec3 wo_local = frame.to_local(-d);
@@ -242,10 +290,9 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     BsdfSample bs;
     Vec3 wi;
     Rgb reflectance(1.0f);
-    if (info.kind == MaterialKind::kDiffuse) {
+    if (info.kind != MaterialKind::kDielectric) {
       const RandomBlock r = draw(ctx, state, s, RngPurpose::kBsdf);
-      bs = diffuse_sample(wo_local, {r.u[0], r.u[1]});
-      reflectance = info.albedo;
+      bs = sample_opaque(info, wo_local, r, &reflectance);
       wi = frame.to_world(bs.wi);
     } else {
       bs = batched_sample(hits, k);
@@ -258,7 +305,8 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     state.set_throughput(s,
                          state.throughput(s) * reflectance * (bs.f * std::fabs(bs.wi.z) / bs.pdf));
     state.mis_pdf[s] = bs.delta ? 0.0f : bs.pdf;
-    if (bs.transmission) {
+    // A diffuse transmitter is a sheet: the medium and the index stay as they were.
+    if (bs.transmission && info.kind == MaterialKind::kDielectric) {
       const bool entering = dot(wi, n) < 0;
       const float eta2 = info.dielectric.eta * info.dielectric.eta;
       state.eta_scale[s] *= entering ? eta2 : 1.0f / eta2;

@@ -10,6 +10,7 @@
 
 #include "scene/input_file.h"
 #include "scene/mesh_topology.h"
+#include "scene/metals.h"
 #include "scene/scene_error.h"
 
 namespace snee {
@@ -259,12 +260,24 @@ class GltfReader {
              "solid dielectric");
       }
     } else if (pbr.metallicFactor >= 0.5) {
-      warn(element, "metallicFactor " + std::to_string(pbr.metallicFactor) +
-                        " is rendered as a diffuse surface of the base colour: snee has no "
-                        "conductor material yet");
-      out.surface.kind = MaterialKind::kDiffuse;
-      out.surface.albedo = base_color;
+      if (pbr.metallicFactor < 1) {
+        warn(element, "metallicFactor " + std::to_string(pbr.metallicFactor) +
+                          " is rendered as 1: snee has no blend of a metal and a diffuse "
+                          "surface, so a material at least half metallic is a conductor");
+      }
+      // The base colour is the normal-incidence reflectance, rising to white at grazing
+      // angles as glTF's Schlick Fresnel does (scene/metals.h).
+      const ComplexIor ior = complex_ior_from_reflectance(base_color);
+      out.surface.kind = MaterialKind::kConductor;
+      out.surface.conductor_eta = ior.eta;
+      out.surface.conductor_k = ior.k;
+      out.surface.roughness = alpha;
     } else {
+      if (pbr.metallicFactor > 0) {
+        warn(element, "metallicFactor " + std::to_string(pbr.metallicFactor) +
+                          " is rendered as 0: snee has no blend of a metal and a diffuse "
+                          "surface, so a material less than half metallic is diffuse");
+      }
       out.surface.kind = MaterialKind::kDiffuse;
       out.surface.albedo = base_color;
     }

@@ -46,14 +46,25 @@ enum class MaterialKind : uint8_t {
   kDiffuse,     // Lambertian, two-sided
   kDielectric,  // Fresnel interface; roughness 0 = smooth, otherwise GGX alpha used directly
   kNull,        // index-matched interface: only bounds a medium, invisible to every ray
+  kConductor,   // metal: complex-index Fresnel, GGX alpha = roughness (0: mirror), two-sided
+  kDiffuseTransmission,  // thin sheet: Lambertian reflection (albedo) and transmission
 };
+
+// Whether light can pass the surface into a medium it bounds (a diffuse transmitter is a sheet
+// with the same medium on both sides, so it bounds none).
+inline bool bounds_media(MaterialKind kind) {
+  return kind == MaterialKind::kDielectric || kind == MaterialKind::kNull;
+}
 
 struct Material {
   std::string name;
   MaterialKind kind = MaterialKind::kDiffuse;
-  Rgb albedo{0.5f};        // diffuse
-  float ior = 1.5f;        // dielectric: interior index / exterior index
-  float roughness = 0.0f;  // dielectric: GGX alpha
+  Rgb albedo{0.5f};         // diffuse; the reflectance of a diffuse transmitter
+  Rgb transmittance{0.0f};  // diffuse transmitter; albedo + transmittance <= 1 per channel
+  float ior = 1.5f;         // dielectric: interior index / exterior index
+  float roughness = 0.0f;   // dielectric and conductor: GGX alpha
+  Rgb conductor_eta{0.0f};  // conductor: complex index eta + i k relative to the exterior
+  Rgb conductor_k{1.0f};
 };
 
 // Homogeneous participating medium; coefficients per scene unit.

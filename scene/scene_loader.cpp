@@ -12,6 +12,7 @@
 #include "scene/json_reader.h"
 #include "scene/mesh_io.h"
 #include "scene/mesh_topology.h"
+#include "scene/metals.h"
 #include "scene/procedural_sky.h"
 
 namespace snee {
@@ -39,6 +40,8 @@ json to_json(const Transform& t) {
 // Relative indices of refraction beyond these are not materials; the bounds keep eta^2 and
 // 1 / eta^2 of the Fresnel and radiance-scaling terms far from float's limits.
 constexpr NumberRange kIorRange{1e-3, 1e3};
+// A conductor's eta and k; 0 is allowed for both (eta = 0 with any k reflects everything).
+constexpr NumberRange kConductorIndexRange{0.0, 1e3};
 // The widest thin lens relative to its focus distance.
 constexpr float kMaxApertureOverFocus = 1e6f;
 
@@ -441,10 +444,11 @@ class SceneReader {
       shape.emission = asset.materials[primitive.material].emission;
       if (shape.interior_medium >= 0) {
         const GltfMaterial& m = asset.materials[primitive.material];
-        if (out_.scene.materials[shape.material].kind == MaterialKind::kDiffuse) {
+        if (!bounds_media(out_.scene.materials[shape.material].kind)) {
           value.fail("the glTF material '" + m.name + "' (" + m.element +
-                     ") has a volume but its snee material is diffuse, which light cannot "
-                     "enter; override its medium with null or its material with a dielectric");
+                     ") has a volume but its snee material is opaque (diffuse, "
+                     "diffuse_transmission or conductor), which light cannot enter; override its "
+                     "medium with null or its material with a dielectric");
         }
         if (!shape.closed) {
           out_.warnings.push_back(shape.source + ": has an interior medium but is open (" +
@@ -524,7 +528,8 @@ class SceneReader {
   }
 
   int add_material(const JsonValue& value, bool top_level) {
-    const std::string type = value.member("type").choice({"diffuse", "dielectric", "null"});
+    const std::string type = value.member("type").choice(
+        {"diffuse", "dielectric", "null", "conductor", "diffuse_transmission"});
     Material material;
     json canonical;
     if (type == "diffuse") {
@@ -542,6 +547,39 @@ class SceneReader {
         material.roughness = roughness->real(kUnitInterval);
       }
       canonical = {{"ior", material.ior}, {"roughness", material.roughness}};
+    } else if (type == "conductor") {
+      const JsonObject obj = value.object({"name", "type", "metal", "eta", "k", "roughness"});
+      material.name = unique_name(obj, top_level, material_names_, "material");
+      material.kind = MaterialKind::kConductor;
+      const ComplexIor ior = conductor_ior(obj);
+      material.conductor_eta = ior.eta;
+      material.conductor_k = ior.k;
+      if (auto roughness = obj.optional("roughness")) {
+        material.roughness = roughness->real(kUnitInterval);
+      }
+      canonical = {{"eta", to_json(material.conductor_eta)},
+                   {"k", to_json(material.conductor_k)},
+                   {"roughness", material.roughness}};
+    } else if (type == "diffuse_transmission") {
+      const JsonObject obj = value.object({"name", "type", "reflectance", "transmittance"});
+      material.name = unique_name(obj, top_level, material_names_, "material");
+      material.kind = MaterialKind::kDiffuseTransmission;
+      material.albedo = material.transmittance = Rgb(0.5f);
+      if (auto r = obj.optional("reflectance")) material.albedo = r->rgb(kUnitInterval);
+      const std::optional<JsonValue> t = obj.optional("transmittance");
+      if (t) material.transmittance = t->rgb(kUnitInterval);
+      for (int c = 0; c < 3; ++c) {
+        // Energy conservation, allowing the rounding of a value written as 1 - R.
+        const float sum = material.albedo[c] + material.transmittance[c];
+        if (sum > 1.0f + 1e-6f) {
+          (t ? *t : obj.value())
+              .fail("reflectance + transmittance is " + describe_number(sum) + " in channel " +
+                    std::to_string(c) + (t ? "" : " (transmittance defaults to 0.5)") +
+                    "; a sheet cannot scatter more light than it receives (expected at most 1)");
+        }
+      }
+      canonical = {{"reflectance", to_json(material.albedo)},
+                   {"transmittance", to_json(material.transmittance)}};
     } else {
       const JsonObject obj = value.object({"name", "type"});
       material.name = unique_name(obj, top_level, material_names_, "material");
@@ -554,6 +592,28 @@ class SceneReader {
     material_names_[material.name] = value.path();
     out_.scene.materials.push_back(material);
     return static_cast<int>(out_.scene.materials.size() - 1);
+  }
+
+  // A conductor's "metal" (a named index) or its "eta" and "k".
+  static ComplexIor conductor_ior(const JsonObject& obj) {
+    if (auto metal = obj.optional("metal")) {
+      if (obj.has("eta") || obj.has("k")) {
+        obj.value().fail("give either metal or eta and k, not both");
+      }
+      if (metal->json().is_string()) {
+        if (auto ior = find_metal(metal->string())) return *ior;
+      }
+      std::string names;
+      for (std::string_view name : metal_names()) {
+        names += (names.empty() ? "" : ", ") + std::string(name);
+      }
+      metal->expected("one of: " + names);
+    }
+    if (!obj.has("eta") || !obj.has("k")) {
+      obj.value().fail("a conductor needs either metal (a named index) or both eta and k");
+    }
+    return {obj.required("eta").rgb(kConductorIndexRange),
+            obj.required("k").rgb(kConductorIndexRange)};
   }
 
   int add_medium(const JsonValue& value, bool top_level) {
@@ -713,10 +773,10 @@ class SceneReader {
     if (auto medium = obj.optional("medium")) {
       shape.interior_medium = reference(*medium, false);
       canonical["medium"] = out_.scene.media[shape.interior_medium].name;
-      if (out_.scene.materials[shape.material].kind == MaterialKind::kDiffuse) {
+      if (!bounds_media(out_.scene.materials[shape.material].kind)) {
         medium->fail(
             "an interior medium needs a dielectric or null material (light cannot "
-            "enter through a diffuse surface)");
+            "enter through a diffuse, diffuse_transmission or conductor surface)");
       }
       if (!shape.closed) {
         out_.warnings.push_back(origin_ + ": " + value.path() + ": the mesh '" + shape.source +

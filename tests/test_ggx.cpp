@@ -1,5 +1,5 @@
-// GGX distribution: normalisation of D, Smith G1 projected-area identity, and the normal sampler
-// (inverse warp, Jacobian and chi-square).
+// GGX distribution: normalisation of D, Smith G1 projected-area identity, the normal sampler
+// (inverse warp, Jacobian and chi-square) and the visible-normal sampler (chi-square).
 #include <gtest/gtest.h>
 
 #include <cfloat>
@@ -77,6 +77,27 @@ TEST(Ggx, SampledNormalsFollowPdf) {
         {.cos_min = cos_min, .samples = 1'000'000});
     EXPECT_GT(r.p_value, 1e-4) << "alpha " << alpha << ": " << r.report;
     EXPECT_EQ(r.success_fraction, 1.0);
+  }
+}
+
+// The visible-normal density integrates to 1 for every view (Smith's projected-area identity
+// makes it a density), and the sampler draws it.
+TEST(Ggx, VisibleNormalsFollowPdf) {
+  TestRng rng(3);
+  for (const float alpha : {0.05f, 0.3f, 1.0f}) {
+    for (const float cos_v : {0.95f, 0.5f, 0.1f}) {
+      const Vec3 v = spherical_direction(std::sqrt(1 - cos_v * cos_v), cos_v, 0.4f);
+      const double cos_min = std::cos(std::min(0.5 * M_PI, std::atan(8.0 * alpha)));
+      const auto r = test::chi2_sphere(
+          [&]() -> std::optional<Vec3> {
+            return ggx_sample_visible_normal(v, rng.uniform2(), alpha);
+          },
+          [&](Vec3 m) { return ggx_visible_normal_pdf(v, m, alpha); },
+          {.cos_min = cos_min, .samples = 400'000});
+      EXPECT_GT(r.p_value, 1e-4) << "alpha " << alpha << " cos_v " << cos_v << ": " << r.report;
+      EXPECT_EQ(r.success_fraction, 1.0);
+      EXPECT_NEAR(r.integral, 1.0, kQuadratureTolerance) << "alpha " << alpha << " cos_v " << cos_v;
+    }
   }
 }
 

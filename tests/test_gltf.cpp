@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "kernels/bsdf/fresnel.h"
 #include "scene/gltf_reader.h"
 #include "scene/scene_loader.h"
 #include "tests/support/scene_error_of.h"
@@ -373,6 +374,46 @@ TEST_F(GltfTest, OpaqueMaterialsAreDiffuseOfTheBaseColour) {
   const GltfMaterial& fallback = asset.materials[asset.primitives[1].material];
   EXPECT_EQ(fallback.name, "default material");
   expect_near(fallback.surface.albedo, Vec3(1.0f));
+}
+
+// metallicFactor 1 is a conductor whose normal-incidence reflectance is the base colour and
+// whose reflectance rises to 1 at grazing incidence (glTF's Schlick Fresnel for metals); the
+// roughness maps to alpha = roughness^2. Partly metallic materials become whichever they are
+// nearer, with a warning.
+TEST_F(GltfTest, MetallicMaterialsAreConductorsOfTheBaseColour) {
+  json doc = embedded();
+  doc["materials"][0].erase("extensions");
+  doc["materials"][0]["pbrMetallicRoughness"] = {
+      {"baseColorFactor", {0.9, 0.6, 0.3, 1}}, {"metallicFactor", 1}, {"roughnessFactor", 0.5}};
+  const GltfAsset metal = load_gltf(write_gltf(doc), Transform());
+  const Material& m = metal.materials[0].surface;
+  EXPECT_EQ(m.kind, MaterialKind::kConductor);
+  EXPECT_FLOAT_EQ(m.roughness, 0.25f);
+  expect_near(fresnel_conductor(1.0f, m.conductor_eta, m.conductor_k), Vec3(0.9f, 0.6f, 0.3f),
+              1e-5f);
+  expect_near(fresnel_conductor(0.0f, m.conductor_eta, m.conductor_k), Vec3(1.0f), 1e-6f);
+  // Between, the reflectance rises monotonically, as Schlick's does.
+  for (int c = 0; c < 3; ++c) {
+    float previous = 0;
+    for (const float cos_i : {1.0f, 0.7f, 0.4f, 0.2f, 0.05f, 0.0f}) {
+      const float f = fresnel_conductor(cos_i, m.conductor_eta[c], m.conductor_k[c]);
+      EXPECT_GE(f, previous - 1e-6f) << c << " " << cos_i;
+      previous = f;
+    }
+  }
+  EXPECT_TRUE(metal.warnings.empty());
+
+  doc["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.7;
+  const GltfAsset mostly = load_gltf(write_gltf(doc), Transform());
+  EXPECT_EQ(mostly.materials[0].surface.kind, MaterialKind::kConductor);
+  ASSERT_EQ(mostly.warnings.size(), 1u);
+  EXPECT_NE(mostly.warnings[0].find("is rendered as 1"), std::string::npos) << mostly.warnings[0];
+
+  doc["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.3;
+  const GltfAsset barely = load_gltf(write_gltf(doc), Transform());
+  EXPECT_EQ(barely.materials[0].surface.kind, MaterialKind::kDiffuse);
+  ASSERT_EQ(barely.warnings.size(), 1u);
+  EXPECT_NE(barely.warnings[0].find("is rendered as 0"), std::string::npos) << barely.warnings[0];
 }
 
 struct BadAsset {

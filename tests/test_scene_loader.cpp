@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scene/mesh_topology.h"
+#include "scene/metals.h"
 #include "scene/scene_loader.h"
 #include "tests/support/test_directory.h"
 
@@ -178,6 +179,9 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.materials[i].albedo, b.materials[i].albedo);
     EXPECT_EQ(a.materials[i].ior, b.materials[i].ior);
     EXPECT_EQ(a.materials[i].roughness, b.materials[i].roughness);
+    EXPECT_EQ(a.materials[i].transmittance, b.materials[i].transmittance);
+    EXPECT_EQ(a.materials[i].conductor_eta, b.materials[i].conductor_eta);
+    EXPECT_EQ(a.materials[i].conductor_k, b.materials[i].conductor_k);
   }
   ASSERT_EQ(a.media.size(), b.media.size());
   for (size_t i = 0; i < a.media.size(); ++i) {
@@ -361,6 +365,94 @@ TEST_F(SceneLoaderTest, ThinLensAndFovAxisRoundTrip) {
   // A subnormal fov that a vertical axis accepts leaves no height across a 32768:1 image.
   doc["camera"]["fov"] = 1e-40;
   expect_error(doc, "camera.fov", "divided by the widest aspect ratio 32768");
+}
+
+// A scene with the conductor (by metal name and by index) and the diffuse transmitter.
+json metals_scene() {
+  return json::parse(R"({
+    "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "resolution": [8, 8]},
+    "materials": [
+      {"name": "gold", "type": "conductor", "metal": "gold", "roughness": 0.1},
+      {"name": "mirror", "type": "conductor", "eta": 0, "k": [1, 2, 3]},
+      {"name": "paper", "type": "diffuse_transmission", "reflectance": [0.3, 0.4, 0.5],
+       "transmittance": [0.7, 0.6, 0.5]},
+      {"name": "sheet", "type": "diffuse_transmission"}
+    ],
+    "shapes": [
+      {"type": "sphere", "material": "gold"},
+      {"type": "sphere", "center": [3, 0, 0], "material": "mirror"},
+      {"type": "quad", "material": "paper"},
+      {"type": "quad", "material": "sheet", "transform": [{"translate": [0, 0, -2]}]}
+    ],
+    "lights": [{"type": "constant", "radiance": 1}]
+  })");
+}
+
+TEST_F(SceneLoaderTest, ConductorAndDiffuseTransmissionReachTheScene) {
+  const LoadedScene loaded = load(metals_scene());
+  const std::vector<Material>& m = loaded.scene.materials;
+  ASSERT_EQ(m.size(), 4u);
+  EXPECT_EQ(m[0].kind, MaterialKind::kConductor);
+  EXPECT_EQ(m[0].conductor_eta, find_metal("gold")->eta);
+  EXPECT_EQ(m[0].conductor_k, find_metal("gold")->k);
+  EXPECT_EQ(m[0].roughness, 0.1f);
+  EXPECT_EQ(m[1].conductor_eta, Rgb(0.0f));
+  EXPECT_EQ(m[1].conductor_k, Rgb(1, 2, 3));
+  EXPECT_EQ(m[1].roughness, 0.0f);
+  EXPECT_EQ(m[2].kind, MaterialKind::kDiffuseTransmission);
+  EXPECT_EQ(m[2].albedo, Rgb(0.3f, 0.4f, 0.5f));
+  EXPECT_EQ(m[2].transmittance, Rgb(0.7f, 0.6f, 0.5f));
+  EXPECT_EQ(m[3].albedo, Rgb(0.5f));
+  EXPECT_EQ(m[3].transmittance, Rgb(0.5f));
+  // The canonical document holds the resolved index, not the metal's name.
+  const json& gold = loaded.canonical["materials"][0];
+  EXPECT_FALSE(gold.contains("metal"));
+  EXPECT_EQ(gold["type"], "conductor");
+  expect_round_trip(loaded, scene_path());
+  for (const std::string_view name : metal_names()) {
+    json doc = metals_scene();
+    doc["materials"][0]["metal"] = name;
+    EXPECT_EQ(load(doc).scene.materials[0].conductor_eta, find_metal(name)->eta) << name;
+  }
+}
+
+TEST_F(SceneLoaderTest, BadConductorAndDiffuseTransmissionFieldsNameTheirPath) {
+  const auto with = [](const std::string& pointer, const json& value) {
+    json doc = metals_scene();
+    const json::json_pointer p(pointer);
+    if (value == kRemove) {
+      doc[p.parent_pointer()].erase(p.back());
+    } else {
+      doc[p] = value;
+    }
+    return doc;
+  };
+  expect_error(with("/materials/0/metal", "steel"), "materials[0].metal",
+               "expected one of: gold, silver, copper, aluminium, got \"steel\"");
+  expect_error(with("/materials/0/eta", 1), "materials[0]", "either metal or eta and k, not both");
+  expect_error(with("/materials/1/k", kRemove), "materials[1]",
+               "needs either metal (a named index) or both eta and k");
+  expect_error(with("/materials/1/k", {1, -2, 3}), "materials[1].k[1]",
+               "expected a number in [0, 1000], got -2");
+  expect_error(with("/materials/1/eta", -0.5), "materials[1].eta",
+               "expected a number in [0, 1000]");
+  expect_error(with("/materials/0/roughness", 2), "materials[0].roughness",
+               "expected a number in [0, 1], got 2");
+  expect_error(with("/materials/2/transmittance", {0.7, 0.7, 0.5}), "materials[2].transmittance",
+               "reflectance + transmittance is 1.1 in channel 1");
+  expect_error(with("/materials/3/reflectance", 0.75), "materials[3]",
+               "reflectance + transmittance is 1.25 in channel 0 (transmittance defaults to 0.5)");
+  expect_error(with("/materials/2/reflectance", {0.3, 1.5, 0}), "materials[2].reflectance[1]",
+               "a number in [0, 1]");
+  expect_error(with("/materials/2/albedo", 0.5), "materials[2].albedo",
+               "unknown key (allowed keys: name, type, reflectance, transmittance)");
+  // Opaque surfaces bound no medium.
+  json doc = metals_scene();
+  doc["shapes"][0]["medium"] = {{"sigma_s", 1}};
+  expect_error(doc, "shapes[0].medium", "an interior medium needs a dielectric or null material");
+  doc = metals_scene();
+  doc["shapes"][2]["medium"] = {{"sigma_s", 1}};
+  expect_error(doc, "shapes[2].medium", "an interior medium needs a dielectric or null material");
 }
 
 TEST_F(SceneLoaderTest, CanonicalDocumentRoundTrips) {

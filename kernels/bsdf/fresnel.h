@@ -1,4 +1,4 @@
-// Unpolarised Fresnel reflectance and Snell refraction for a dielectric interface.
+// Unpolarised Fresnel reflectance of dielectric and conductor interfaces, and Snell refraction.
 #pragma once
 
 #include "scene/lane_math.h"
@@ -28,6 +28,32 @@ F fresnel_dielectric(F cos_i, F eta) {
 // The scalar form, which also takes arguments that convert to float.
 inline float fresnel_dielectric(float cos_i, float eta) {
   return fresnel_dielectric<float>(cos_i, eta);
+}
+
+// Reflectance of a conductor of complex index eta + i k (relative to the exterior) for light
+// arriving with cosine cos_i; exact for unpolarised light (Born and Wolf; the arrangement of
+// pbrt-v3's FrConductor, which stays finite at grazing incidence, where it is 1). eta = 0,
+// k >= 0 reflects everything at every angle.
+inline float fresnel_conductor(float cos_i, float eta, float k) {
+  const float c = std::clamp(cos_i, 0.0f, 1.0f);
+  const float cos2 = c * c, sin2 = 1.0f - cos2;
+  const float t0 = eta * eta - k * k - sin2;
+  const float a2_plus_b2 = std::sqrt(t0 * t0 + 4.0f * eta * eta * k * k);
+  const float t1 = a2_plus_b2 + cos2;
+  const float a = std::sqrt(std::max(0.0f, 0.5f * (a2_plus_b2 + t0)));
+  const float t2 = 2.0f * c * a;
+  // The denominators vanish only in limits where the reflectance is known: grazing incidence on
+  // eta = 1, k = 0 (1), and normal incidence on eta = k = 0 (rp = rs there).
+  const float rs = t1 + t2 > 0.0f ? (t1 - t2) / (t1 + t2) : 1.0f;
+  const float t3 = cos2 * a2_plus_b2 + sin2 * sin2;
+  const float t4 = t2 * sin2;
+  const float rp = t3 + t4 > 0.0f ? rs * (t3 - t4) / (t3 + t4) : rs;
+  return 0.5f * (rp + rs);
+}
+
+inline Rgb fresnel_conductor(float cos_i, Rgb eta, Rgb k) {
+  return {fresnel_conductor(cos_i, eta.x, k.x), fresnel_conductor(cos_i, eta.y, k.y),
+          fresnel_conductor(cos_i, eta.z, k.z)};
 }
 
 // Refracts w (pointing away from the surface) through the interface whose normal m lies on w's

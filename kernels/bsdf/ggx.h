@@ -36,4 +36,27 @@ inline float ggx_normal_pdf(Vec3 m, float alpha) {
   return ggx_d(m, alpha) * std::max(m.z, 0.0f);
 }
 
+// m with density G1(v, m) max(0, v.m) D(m) / v.z, the normals visible from v (v.z > 0): Heitz,
+// "Sampling the GGX Distribution of Visible Normals", JCGT 7(4), 2018. A sampler for reflection
+// that never draws a normal facing away from v, so no sample is wasted at grazing angles.
+inline Vec3 ggx_sample_visible_normal(Vec3 v, Vec2 u, float alpha) {
+  // Stretch to the hemisphere configuration, sample the projected half disk, unstretch.
+  const Vec3 vh = normalize(Vec3(alpha * v.x, alpha * v.y, v.z));
+  const float len2 = vh.x * vh.x + vh.y * vh.y;
+  const Vec3 t1 = len2 > 0.0f ? Vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : Vec3(1.0f, 0.0f, 0.0f);
+  const Vec3 t2 = cross(vh, t1);
+  const float r = std::sqrt(u.x);
+  const float phi = 2.0f * kPi * u.y;
+  const float p1 = r * std::cos(phi);
+  const float s = 0.5f * (1.0f + vh.z);
+  const float p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
+  const Vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+  return normalize(Vec3(alpha * nh.x, alpha * nh.y, std::max(0.0f, nh.z)));
+}
+
+inline float ggx_visible_normal_pdf(Vec3 v, Vec3 m, float alpha) {
+  if (v.z <= 0.0f) return 0.0f;
+  return ggx_g1(v, m, alpha) * std::max(0.0f, dot(v, m)) * ggx_d(m, alpha) / v.z;
+}
+
 }  // namespace snee
