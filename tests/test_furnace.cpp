@@ -1,8 +1,7 @@
 // White furnace (docs/method.md 5.5): an albedo-1 medium inside a smooth dielectric under a
 // uniform environment of radiance 1 is invisible, for any index of refraction. Holds for the
 // sphere and the bunny, with a dielectric and an index-matched boundary, and for every
-// unbiased integrator. Surfaces that absorb nothing (a white mirror, a diffuse transmitter with
-// R + T = 1) are invisible too.
+// unbiased integrator. (Surfaces that absorb nothing: tests/test_material_render.cpp.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,25 +21,6 @@ struct FurnaceCase {
 
 class Furnace : public ::testing::TestWithParam<FurnaceCase> {};
 
-// The whole image and each of its blocks average to 1 within their standard errors.
-void expect_renders_to_one(const Film& film) {
-  // Every pixel is judged, background included (it sees the environment directly).
-  const std::vector<bool> all(film.mean.size(), true);
-  const test::RegionStats whole = test::region_mean(film, all);
-  // Float accumulation over a path allows a few ulps of drift even where the estimator has
-  // zero variance (pt with Fresnel-proportional choices).
-  const double rounding = 1e-5;
-  EXPECT_NEAR(whole.mean, 1.0, 4 * whole.standard_error + rounding)
-      << "se " << whole.standard_error;
-  // No region far off: 8x8 blocks, each within 5 standard errors (about 16 blocks, so a
-  // Bonferroni-safe bound at a 1e-6 per-block false alarm rate).
-  for (const auto& block : test::blocks(film, all, 8, 16)) {
-    const test::RegionStats r = test::region_mean(film, block);
-    EXPECT_NEAR(r.mean, 1.0, 5 * r.standard_error + rounding)
-        << "block of " << r.pixels << " pixels";
-  }
-}
-
 TEST_P(Furnace, ObjectRendersToOne) {
   Scene scene = load_builtin_scene(GetParam().scene).scene;
   scene.camera.width = scene.camera.height = 32;
@@ -48,7 +28,7 @@ TEST_P(Furnace, ObjectRendersToOne) {
   options.spp = 32;
   options.seed = 7;
   options.integrator = GetParam().integrator;
-  expect_renders_to_one(render(scene, options).film);
+  test::expect_renders_to_one(render(scene, options).film);
 }
 
 std::string case_name(const ::testing::TestParamInfo<FurnaceCase>& p) {
@@ -117,57 +97,6 @@ TEST(FurnaceCrossing, DenseMediumFurnaceIsExact) {
   const std::vector<bool> all(film.mean.size(), true);
   EXPECT_NEAR(test::region_mean(film, all).mean, 1.0, 1e-4);
   EXPECT_EQ(wrong_samples(film, options.spp), 0);
-}
-
-// A unit sphere of `material` under a constant environment of radiance 1, filling a 32x32 view.
-Film render_sphere_furnace(const nlohmann::json& material, const char* integrator, int spp) {
-  const nlohmann::json doc = {{"camera",
-                               {{"position", {0.0, 0.0, 4.0}},
-                                {"look_at", {0.0, 0.0, 0.0}},
-                                {"fov", 35.0},
-                                {"resolution", {32, 32}}}},
-                              {"shapes",
-                               {{{"type", "sphere"},
-                                 {"center", {0.0, 0.0, 0.0}},
-                                 {"radius", 1.0},
-                                 {"material", material}}}},
-                              {"lights", {{{"type", "constant"}, {"radiance", 1.0}}}}};
-  const Scene scene = load_scene_json(doc, "material furnace", ".").scene;
-  RenderOptions options;
-  options.spp = spp;
-  options.seed = 3;
-  options.integrator = integrator;
-  return render(scene, options).film;
-}
-
-// A mirror that reflects everything (eta 0, k 1: F = 1 at every angle) sends each camera ray
-// once into the environment with weight exactly 1: no integrator may see the sphere.
-TEST(MaterialFurnace, WhiteMirrorIsInvisible) {
-  const nlohmann::json mirror = {{"type", "conductor"}, {"eta", 0.0}, {"k", 1.0}};
-  for (const char* integrator : {"pt", "snee", "sla"}) {
-    const Film film = render_sphere_furnace(mirror, integrator, 4);
-    for (const Rgb& m : film.mean) {
-      EXPECT_NEAR(m.x, 1.0f, 1e-6f) << integrator;
-      EXPECT_NEAR(m.y, 1.0f, 1e-6f) << integrator;
-      EXPECT_NEAR(m.z, 1.0f, 1e-6f) << integrator;
-    }
-  }
-}
-
-// A closed sphere of a diffuse transmitter with R + T = 1 absorbs nothing: whatever happens
-// to light inside, it leaves again, so the sphere renders exactly 1 (within the standard error
-// of its coloured lobes' weights), for each integrator.
-TEST(MaterialFurnace, LosslessDiffuseTransmitterIsInvisible) {
-  const nlohmann::json sheet = {{"type", "diffuse_transmission"},
-                                {"reflectance", {0.2, 0.5, 0.7}},
-                                {"transmittance", {0.8, 0.5, 0.3}}};
-  for (const char* integrator : {"pt", "snee", "sla"}) {
-    SCOPED_TRACE(integrator);
-    const Film film = render_sphere_furnace(sheet, integrator, 32);
-    EXPECT_GT(test::region_mean(film, std::vector<bool>(film.mean.size(), true)).standard_error,
-              0.0);
-    expect_renders_to_one(film);
-  }
 }
 
 }  // namespace

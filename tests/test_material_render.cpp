@@ -1,8 +1,10 @@
-// The new surface materials inside the renderer, against answers known apart from it: a diffuse
-// transmitter lit by a directional light from either side shows R E / pi or T E / pi (light
-// sampling only, so exactly), and a rough gold sphere under a constant environment shows at
-// the centre of its disk the albedo of the conductor lobe at normal incidence, estimated from
-// the BSDF sampler alone (the renderer adds light sampling and MIS), for pt, snee and sla.
+// The new surface materials inside the renderer, against answers known apart from it. Surfaces
+// that absorb nothing vanish in a white furnace: a white mirror and a closed diffuse
+// transmitter with R + T = 1. A diffuse transmitter lit by a directional light from either side
+// shows R E / pi or T E / pi (light sampling only, so exactly), and a rough gold sphere under a
+// constant environment shows at the centre of its disk the albedo of the conductor lobe at
+// normal incidence, estimated from the BSDF sampler alone (the renderer adds light sampling and
+// MIS). Each for pt, snee and sla.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -107,6 +109,52 @@ TEST(MaterialRender, RoughGoldSphereShowsTheLobeAlbedo) {
           << integrator << " channel " << c << ": " << pixels.mean() << " vs "
           << reference[c].mean();
     }
+  }
+}
+
+// A unit sphere of `material` under a constant environment of radiance 1, filling a 32x32 view.
+Film render_sphere_furnace(const json& material, const char* integrator, int spp) {
+  const json doc = {{"camera",
+                     {{"position", {0.0, 0.0, 4.0}},
+                      {"look_at", {0.0, 0.0, 0.0}},
+                      {"fov", 35.0},
+                      {"resolution", {32, 32}}}},
+                    {"shapes",
+                     {{{"type", "sphere"},
+                       {"center", {0.0, 0.0, 0.0}},
+                       {"radius", 1.0},
+                       {"material", material}}}},
+                    {"lights", {{{"type", "constant"}, {"radiance", 1.0}}}}};
+  return render_doc(doc, integrator, spp);
+}
+
+// A mirror that reflects everything (eta 0, k 1: F = 1 at every angle) sends each camera ray
+// once into the environment with weight exactly 1: no integrator may see the sphere.
+TEST(MaterialFurnace, WhiteMirrorIsInvisible) {
+  const json mirror = {{"type", "conductor"}, {"eta", 0.0}, {"k", 1.0}};
+  for (const char* integrator : kIntegrators) {
+    const Film film = render_sphere_furnace(mirror, integrator, 4);
+    for (const Rgb& m : film.mean) {
+      EXPECT_NEAR(m.x, 1.0f, 1e-6f) << integrator;
+      EXPECT_NEAR(m.y, 1.0f, 1e-6f) << integrator;
+      EXPECT_NEAR(m.z, 1.0f, 1e-6f) << integrator;
+    }
+  }
+}
+
+// A closed sphere of a diffuse transmitter with R + T = 1 absorbs nothing: whatever happens
+// to light inside, it leaves again, so the sphere renders exactly 1 (within the standard error
+// of its coloured lobes' weights), for each integrator.
+TEST(MaterialFurnace, LosslessDiffuseTransmitterIsInvisible) {
+  const json sheet = {{"type", "diffuse_transmission"},
+                      {"reflectance", {0.2, 0.5, 0.7}},
+                      {"transmittance", {0.8, 0.5, 0.3}}};
+  for (const char* integrator : kIntegrators) {
+    SCOPED_TRACE(integrator);
+    const Film film = render_sphere_furnace(sheet, integrator, 32);
+    EXPECT_GT(test::region_mean(film, std::vector<bool>(film.mean.size(), true)).standard_error,
+              0.0);
+    test::expect_renders_to_one(film);
   }
 }
 

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <gtest/gtest.h>
+
 namespace snee::test {
 
 bool bitwise_identical(const Film& a, const Film& b) {
@@ -99,6 +101,24 @@ std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>&
     }
   }
   return out;
+}
+
+void expect_renders_to_one(const Film& film) {
+  // Every pixel is judged, background included (it sees the environment directly).
+  const std::vector<bool> all(film.mean.size(), true);
+  const RegionStats whole = region_mean(film, all);
+  // Float accumulation over a path allows a few ulps of drift even where the estimator has
+  // zero variance (pt with Fresnel-proportional choices).
+  const double rounding = 1e-5;
+  EXPECT_NEAR(whole.mean, 1.0, 4 * whole.standard_error + rounding)
+      << "se " << whole.standard_error;
+  // No region far off: 8x8 blocks, each within 5 standard errors (about 16 blocks, so a
+  // Bonferroni-safe bound at a 1e-6 per-block false alarm rate).
+  for (const auto& block : blocks(film, all, 8, 16)) {
+    const RegionStats r = region_mean(film, block);
+    EXPECT_NEAR(r.mean, 1.0, 5 * r.standard_error + rounding)
+        << "block of " << r.pixels << " pixels";
+  }
 }
 
 }  // namespace snee::test

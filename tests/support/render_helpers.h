@@ -28,6 +28,9 @@ RegionStats region_mean(const Film& film, const std::vector<bool>& mask);
 // The pixels whose camera ray hits the unit sphere at the origin (exactly, at the pixel centre
 // footprint: all four corners inside the silhouette).
 std::vector<bool> sphere_mask(const Scene& scene);
+// Expects the whole image and each of its 8x8 blocks to average to 1 within their standard
+// errors (4 and 5 SE), as a white furnace must.
+void expect_renders_to_one(const Film& film);
 // Square blocks of `block` pixels intersected with a mask (blocks with fewer than min_pixels
 // masked pixels are dropped).
 std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block,
