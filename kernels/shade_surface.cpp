@@ -28,8 +28,9 @@ void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQue
                  SurfaceResults& out) {
   const size_t n = queue.size();
   // The interface each entry's lane samples with. Only dielectric entries use their sample;
-  // the others (diffuse, null) repeat the last dielectric's interface, so that a chunk mixing
-  // one dielectric with a diffuse floor stays on one sampling path (dielectric_batch.h).
+  // the others (diffuse, conductor, sheet, null) repeat the last dielectric's interface, so that a
+  // chunk mixing one dielectric with a diffuse floor stays on one sampling path
+  // (dielectric_batch.h).
   DielectricParams lane_interface;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t s = queue[k];
@@ -212,7 +213,7 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
 
 // Two passes: hit geometry, dielectric BSDF samples and random numbers for the whole queue (in
 // SIMD chunks), then, per slot in queue order, what branches: emission, null crossings, exit
-// events, light sampling, diffuse sampling, roulette and routing.
+// events, light sampling, the other surfaces' BSDF sampling, roulette and routing.
 void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
                    KernelCounters& counters) {
   SurfaceResults& hits = q.surfaces;
