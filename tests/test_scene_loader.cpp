@@ -416,6 +416,18 @@ TEST_F(SceneLoaderTest, ConductorAndDiffuseTransmissionReachTheScene) {
   }
 }
 
+// The materials example of docs/scene-format.md loads and round-trips.
+TEST_F(SceneLoaderTest, MaterialsExampleLoads) {
+  const fs::path example =
+      fs::path(SNEE_PROJECT_DATA_DIR).parent_path() / "docs/examples/materials.json";
+  const LoadedScene loaded = load_scene_file(example.string());
+  ASSERT_EQ(loaded.scene.materials.size(), 5u);
+  EXPECT_EQ(loaded.scene.materials[0].kind, MaterialKind::kConductor);
+  EXPECT_EQ(loaded.scene.materials[3].kind, MaterialKind::kDiffuseTransmission);
+  EXPECT_TRUE(loaded.warnings.empty());
+  expect_round_trip(loaded, example.string());
+}
+
 TEST_F(SceneLoaderTest, BadConductorAndDiffuseTransmissionFieldsNameTheirPath) {
   const auto with = [](const std::string& pointer, const json& value) {
     json doc = metals_scene();
