@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include "kernels/bsdf/fresnel.h"
 #include "scene/aov_selection.h"
 #include "scheduler/render.h"
 #include "tests/support/render_helpers.h"
@@ -134,6 +135,32 @@ TEST(Aovs, DiffusePlaneFacingTheCameraIsExactInEveryPixel) {
   const double spread = distance * std::sqrt(2.0) * 2 * std::fabs(corner.x) / scene.camera.width;
   const double standard_error = spread / std::sqrt(pixels * spp);
   EXPECT_NEAR(depth_sum / pixels, integral, 5 * standard_error + 1e-5 * integral);
+}
+
+// A rough conductor's albedo is its normal-incidence reflectance, a diffuse transmitter's its
+// reflectance plus transmittance: the same in every sample, so exact in every pixel.
+TEST(Aovs, ConductorAndDiffuseTransmitterAlbedos) {
+  Material gold;
+  gold.kind = MaterialKind::kConductor;
+  gold.conductor_eta = {0.143f, 0.375f, 1.442f};
+  gold.conductor_k = {3.983f, 2.386f, 1.603f};
+  gold.roughness = 0.3f;
+  Material sheet;
+  sheet.kind = MaterialKind::kDiffuseTransmission;
+  sheet.albedo = {0.1f, 0.2f, 0.3f};
+  sheet.transmittance = {0.5f, 0.25f, 0.125f};
+  const Rgb f0 = fresnel_conductor(1.0f, gold.conductor_eta, gold.conductor_k);
+  for (const auto& [material, expected] :
+       {std::pair{gold, f0}, std::pair{sheet, sheet.albedo + sheet.transmittance}}) {
+    Scene scene = facing_camera_scene(3.0f, 40.0f, 8);
+    scene.materials.push_back(material);
+    scene.shapes.push_back(square(0.0f, 10.0f, 0));
+    const Film film = render(scene, aov_options(4)).film;
+    ASSERT_EQ(film.albedo.size(), film.mean.size());
+    for (const Rgb& a : film.albedo) {
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(a[c], expected[c]) << c;
+    }
+  }
 }
 
 TEST(Aovs, DiffuseSphereShowsItsNormalField) {
