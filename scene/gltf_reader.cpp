@@ -451,11 +451,28 @@ class GltfReader {
       light.kind = LightKind::kPoint;
       light.position = world.point(Vec3(0.0f));
       light.intensity = power;
+    } else if (l.type == "spot") {
+      // Candela on the axis, which is the node's local -z. glTF's cone angles are half-angles
+      // from the axis with 0 <= inner < outer <= pi/2; snee's falloff between them is a
+      // smoothstep in the cosine (pbrt's), where glTF suggests a squared linear ramp.
+      const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+      if (!(outer > 0 && outer <= kPi / 2 + 1e-6)) {
+        fail(light_element + ".spot.outerConeAngle", "expected an angle in (0, pi/2]");
+      }
+      if (!(inner >= 0 && inner < outer)) {
+        fail(light_element + ".spot.innerConeAngle", "expected an angle in [0, outerConeAngle)");
+      }
+      light.kind = LightKind::kSpot;
+      light.position = world.point(Vec3(0.0f));
+      light.intensity = power;
+      light.spot_axis = normalize(world.vector(Vec3(0, 0, -1)));
+      light.spot_cos_outer = static_cast<float>(std::cos(outer));
+      light.spot_cos_inner = static_cast<float>(std::cos(inner));
+      if (!is_finite(light.spot_axis)) fail(element, "the node's transform has no direction");
     } else {
       fail(light_element, "a '" + l.type +
-                              "' light; snee has directional and point lights only (no spot "
-                              "light yet): replace it with a point light in the asset, or drop "
-                              "it and add a light in the snee scene");
+                              "' light; KHR_lights_punctual defines directional, "
+                              "point and spot lights");
     }
     asset_.lights.push_back(light);
   }

@@ -109,6 +109,13 @@ inline float safe_acos(float x) {
 constexpr float sqr(float x) {
   return x * x;
 }
+// 0 at or below lo, 1 at or above hi, the cubic 3t^2 - 2t^3 between; with lo == hi a step
+// (1 from lo on).
+inline float smoothstep(float lo, float hi, float x) {
+  if (!(hi > lo)) return x < lo ? 0.0f : 1.0f;
+  const float t = std::clamp((x - lo) / (hi - lo), 0.0f, 1.0f);
+  return t * t * (3 - 2 * t);
+}
 
 // Orthonormal basis around n (Duff et al. 2017, branchless), over the 3-vector V of a lane type.
 template <class V>

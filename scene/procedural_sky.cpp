@@ -10,11 +10,6 @@ Rgb lerp(Rgb a, Rgb b, float t) {
   return a * (1 - t) + b * t;
 }
 
-float smoothstep(float lo, float hi, float x) {
-  const float t = std::clamp((x - lo) / (hi - lo), 0.0f, 1.0f);
-  return t * t * (3 - 2 * t);
-}
-
 Rgb sky_radiance(Vec3 d) {
   const Rgb zenith(0.25f, 0.42f, 0.85f);
   const Rgb horizon(1.0f, 0.82f, 0.6f);

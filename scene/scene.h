@@ -112,6 +112,7 @@ enum class LightKind : uint8_t {
   kConstantEnv,  // constant radiance from every direction
   kEnvMap,       // lat-long image, importance sampled
   kPoint,        // delta in position; intensity
+  kSpot,         // delta in position; intensity along its axis, smoothly cut off at a cone
   kArea,         // emissive shape (Shape::emission), referenced by index
 };
 
@@ -126,15 +127,19 @@ struct EnvImage {
 
 struct Light {
   LightKind kind = LightKind::kDirectional;
-  Vec3 direction{0, 1, 0};  // unit, *toward* the light (directional and cone axis)
-  Rgb irradiance{1.0f};     // directional
-  float half_angle = 0;     // cone, radians
-  Rgb radiance{1.0f};       // cone, constant env; scale for env map
-  Vec3 position;            // point
-  Rgb intensity{1.0f};      // point
-  int env_image = -1;       // kEnvMap: index into Scene::env_images
-  Transform env_rotation;   // kEnvMap: world direction = env_rotation.vector(map direction)
-  int shape = -1;           // kArea: index into Scene::shapes
+  Vec3 direction{0, 1, 0};   // unit, *toward* the light (directional and cone axis)
+  Rgb irradiance{1.0f};      // directional
+  float half_angle = 0;      // cone, radians
+  Rgb radiance{1.0f};        // cone, constant env; scale for env map
+  Vec3 position;             // point, spot
+  Rgb intensity{1.0f};       // point, spot (on the axis)
+  Vec3 spot_axis{0, -1, 0};  // spot: unit, the direction it shines (away from the light)
+  // Spot: cosines of the cone's half-angle (nothing beyond) and of the angle where the falloff
+  // starts (full intensity within); the intensity is smoothstep(cos_outer, cos_inner, cos).
+  float spot_cos_outer = 0.0f, spot_cos_inner = 1.0f;
+  int env_image = -1;      // kEnvMap: index into Scene::env_images
+  Transform env_rotation;  // kEnvMap: world direction = env_rotation.vector(map direction)
+  int shape = -1;          // kArea: index into Scene::shapes
 };
 
 // Defaults a scene may carry; the command line overrides them.

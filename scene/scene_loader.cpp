@@ -477,7 +477,7 @@ class SceneReader {
       check_coordinates(camera->position, file_value, "the glTF camera position");
     }
     for (const Light& light : asset.lights) {
-      if (light.kind == LightKind::kPoint) {
+      if (light.kind == LightKind::kPoint || light.kind == LightKind::kSpot) {
         check_coordinates(light.position, file_value, "a glTF light position");
       }
     }
@@ -800,8 +800,8 @@ class SceneReader {
   }
 
   void read_light(const JsonValue& value) {
-    const std::string type =
-        value.member("type").choice({"directional", "cone", "constant", "envmap", "sky", "point"});
+    const std::string type = value.member("type").choice(
+        {"directional", "cone", "constant", "envmap", "sky", "point", "spot"});
     Light light;
     json canonical = {{"type", type}};
     if (type == "directional") {
@@ -860,6 +860,8 @@ class SceneReader {
       if (auto rotation = obj.optional("rotation")) light.env_rotation = read_rotation(*rotation);
       canonical["scale"] = to_json(light.radiance);
       canonical["rotation"] = to_json(light.env_rotation);
+    } else if (type == "spot") {
+      read_spot(value, light, canonical);
     } else {
       const JsonObject obj = value.object({"type", "position", "intensity"});
       light.kind = LightKind::kPoint;
@@ -872,6 +874,41 @@ class SceneReader {
     }
     canonical_lights_.push_back(canonical);
     out_.scene.lights.push_back(light);
+  }
+
+  void read_spot(const JsonValue& value, Light& light, json& canonical) {
+    const JsonObject obj = value.object({"type", "position", "look_at", "intensity",
+                                         "cone_angle_degrees", "falloff_start_degrees"});
+    light.kind = LightKind::kSpot;
+    const JsonValue position = obj.required("position");
+    light.position = position.vec3();
+    check_coordinates(light.position, position, "the light position");
+    const JsonValue look_at_value = obj.required("look_at");
+    const Vec3 look_at = look_at_value.vec3();
+    check_coordinates(look_at, look_at_value, "the look_at point");
+    light.spot_axis = normalize(look_at - light.position);
+    if (!(std::fabs(length(light.spot_axis) - 1) < 1e-5f)) {
+      look_at_value.expected(
+          "a point different from the light position, far enough from it (about 1e-19) to give "
+          "an axis in single precision");
+    }
+    if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kNonNegative);
+    float cone_degrees = 30.0f;
+    if (auto cone = obj.optional("cone_angle_degrees")) {
+      cone_degrees = cone->real({0.0, 180.0, true, false});
+    }
+    // pbrt's default: the falloff spans the cone's last 5 degrees.
+    float falloff_degrees = std::max(0.0f, cone_degrees - 5.0f);
+    if (auto falloff = obj.optional("falloff_start_degrees")) {
+      falloff_degrees = falloff->real({0.0, cone_degrees});
+    }
+    light.spot_cos_outer = std::cos(degrees_to_radians(cone_degrees));
+    light.spot_cos_inner = std::cos(degrees_to_radians(falloff_degrees));
+    canonical["position"] = to_json(light.position);
+    canonical["look_at"] = to_json(look_at);
+    canonical["intensity"] = to_json(light.intensity);
+    canonical["cone_angle_degrees"] = cone_degrees;
+    canonical["falloff_start_degrees"] = falloff_degrees;
   }
 
   std::string origin_;

@@ -335,6 +335,27 @@ TEST_F(GltfTest, SceneIncludesAssetWithOverridesAndReloadsCanonically) {
   EXPECT_EQ(again.scene.lights.size(), 3u);
 }
 
+// glTF's spot shines down the node's local -z; its cone angles become the cosines of the cone
+// and of the falloff start.
+TEST_F(GltfTest, SpotLightKeepsItsConeAndAxis) {
+  json doc = embedded();
+  doc["extensions"]["KHR_lights_punctual"]["lights"][1] = {
+      {"type", "spot"},
+      {"intensity", 7},
+      {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}};
+  // -90 degrees about x: local -z becomes -y.
+  doc["nodes"][4]["rotation"] = {-std::sqrt(0.5), 0, 0, std::sqrt(0.5)};
+  const GltfAsset asset = load_gltf(write_gltf(doc), Transform());
+  ASSERT_EQ(asset.lights.size(), 2u);
+  const Light& spot = asset.lights[1];
+  EXPECT_EQ(spot.kind, LightKind::kSpot);
+  expect_near(spot.position, Vec3(0, 4, 0));
+  expect_near(spot.spot_axis, Vec3(0, -1, 0));
+  expect_near(spot.intensity, Vec3(7.0f));
+  EXPECT_FLOAT_EQ(spot.spot_cos_outer, std::cos(0.5f));
+  EXPECT_FLOAT_EQ(spot.spot_cos_inner, std::cos(0.2f));
+}
+
 TEST_F(GltfTest, MediumOverrideNullRemovesTheVolume) {
   write_gltf(embedded());
   const json doc = {{"include", {{{"file", "cube.gltf"}, {"media", {{"jade", nullptr}}}}}}};
@@ -439,12 +460,21 @@ TEST_F(GltfTest, BadAssetsNameTheFileAndTheElement) {
        "meshes[0].primitives[0]", "NORMAL has 23 elements, POSITION 24"},
       {"triangle strips", [](json& d) { d["meshes"][0]["primitives"][0]["mode"] = 5; },
        "meshes[0].primitives[0]", "snee reads triangle lists"},
-      {"a spot light",
+      {"a spot cone wider than a hemisphere",
        [](json& d) {
          d["extensions"]["KHR_lights_punctual"]["lights"][1] = {
-             {"type", "spot"}, {"spot", {{"outerConeAngle", 0.5}}}};
+             {"type", "spot"}, {"spot", {{"outerConeAngle", 2.0}}}};
        },
-       "extensions.KHR_lights_punctual.lights[1]", "no spot light"},
+       "extensions.KHR_lights_punctual.lights[1].spot.outerConeAngle", "(0, pi/2]"},
+      {"a spot falloff starting past its cone",
+       [](json& d) {
+         d["extensions"]["KHR_lights_punctual"]["lights"][1] = {
+             {"type", "spot"}, {"spot", {{"innerConeAngle", 0.6}, {"outerConeAngle", 0.5}}}};
+       },
+       "extensions.KHR_lights_punctual.lights[1].spot.innerConeAngle", "[0, outerConeAngle)"},
+      {"an unknown light type",
+       [](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][1]["type"] = "area"; },
+       "extensions.KHR_lights_punctual.lights[1]", "directional, point and spot"},
       {"a node cycle", [](json& d) { d["nodes"][1]["children"] = {0}; }, "nodes[0]",
        "reached twice"},
       {"an orthographic camera",

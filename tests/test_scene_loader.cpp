@@ -150,7 +150,9 @@ json full_scene() {
       {"type": "envmap", "file": "env.exr", "scale": 2,
        "rotation": [{"rotate": {"axis": [0, 1, 0], "degrees": 90}}]},
       {"type": "sky", "scale": [1, 0.9, 0.8]},
-      {"type": "point", "position": [0, 3, 0], "intensity": 10}
+      {"type": "point", "position": [0, 3, 0], "intensity": 10},
+      {"type": "spot", "position": [0, 4, 0], "look_at": [0, 4, -2], "intensity": 20,
+       "cone_angle_degrees": 40, "falloff_start_degrees": 25}
     ]
   })");
 }
@@ -215,6 +217,9 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(l.radiance, m.radiance);
     EXPECT_EQ(l.position, m.position);
     EXPECT_EQ(l.intensity, m.intensity);
+    EXPECT_EQ(l.spot_axis, m.spot_axis);
+    EXPECT_EQ(l.spot_cos_outer, m.spot_cos_outer);
+    EXPECT_EQ(l.spot_cos_inner, m.spot_cos_inner);
     EXPECT_EQ(l.env_image, m.env_image);
     expect_same_transform(l.env_rotation, m.env_rotation);
     EXPECT_EQ(l.shape, m.shape);
@@ -317,7 +322,7 @@ TEST_F(SceneLoaderTest, EveryFieldReachesTheScene) {
   EXPECT_GT(normal.y, 0.0f);
   EXPECT_EQ(quad.emission, Rgb(1, 2, 3));
 
-  ASSERT_EQ(s.lights.size(), 7u);  // six listed and the emissive quad
+  ASSERT_EQ(s.lights.size(), 8u);  // seven listed and the emissive quad
   EXPECT_EQ(s.lights[0].kind, LightKind::kDirectional);
   EXPECT_EQ(s.lights[0].direction, Vec3(0, 1, 0));
   EXPECT_EQ(s.lights[0].irradiance, Rgb(3, 2, 1));
@@ -335,8 +340,14 @@ TEST_F(SceneLoaderTest, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.lights[4].env_image, 1);
   EXPECT_EQ(s.lights[5].kind, LightKind::kPoint);
   EXPECT_EQ(s.lights[5].intensity, Rgb(10.0f));
-  EXPECT_EQ(s.lights[6].kind, LightKind::kArea);
-  EXPECT_EQ(s.lights[6].shape, 3);
+  EXPECT_EQ(s.lights[6].kind, LightKind::kSpot);
+  EXPECT_EQ(s.lights[6].position, Vec3(0, 4, 0));
+  EXPECT_EQ(s.lights[6].spot_axis, Vec3(0, 0, -1));
+  EXPECT_EQ(s.lights[6].intensity, Rgb(20.0f));
+  EXPECT_FLOAT_EQ(s.lights[6].spot_cos_outer, std::cos(40 * kPi / 180));
+  EXPECT_FLOAT_EQ(s.lights[6].spot_cos_inner, std::cos(25 * kPi / 180));
+  EXPECT_EQ(s.lights[7].kind, LightKind::kArea);
+  EXPECT_EQ(s.lights[7].shape, 3);
 
   ASSERT_EQ(s.env_images.size(), 2u);
   EXPECT_EQ(s.env_images[0].width, 4);
@@ -478,7 +489,30 @@ TEST_F(SceneLoaderTest, CanonicalDocumentRoundTrips) {
   EXPECT_EQ(c["shapes"][0]["file"], (dir_ / "meshes" / "cube.obj").string());
   EXPECT_EQ(c["shapes"][0]["normalize"], false);
   EXPECT_EQ(c["media"][1]["type"], "homogeneous");
-  EXPECT_EQ(c["lights"].size(), 6u);
+  EXPECT_EQ(c["lights"].size(), 7u);
+  EXPECT_EQ(c["lights"][6]["look_at"], json({0.0, 4.0, -2.0}));
+  EXPECT_EQ(c["lights"][6]["falloff_start_degrees"], 25.0);
+}
+
+// A spot given only its position and target gets pbrt's defaults: a 30-degree cone whose last
+// 5 degrees fall off; a narrow cone falls off over all of it.
+TEST_F(SceneLoaderTest, SpotLightDefaults) {
+  const LoadedScene loaded = load_text(R"({
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
+    "shapes": [{"type": "sphere", "material": {"type": "diffuse"}}],
+    "lights": [{"type": "spot", "position": [0, 2, 0], "look_at": [0, 0, 0]},
+               {"type": "spot", "position": [0, 2, 0], "look_at": [0, 0, 0],
+                "cone_angle_degrees": 3}]
+  })");
+  const Light& spot = loaded.scene.lights[0];
+  EXPECT_EQ(spot.intensity, Rgb(1.0f));
+  EXPECT_EQ(spot.spot_axis, Vec3(0, -1, 0));
+  EXPECT_FLOAT_EQ(spot.spot_cos_outer, std::cos(30 * kPi / 180));
+  EXPECT_FLOAT_EQ(spot.spot_cos_inner, std::cos(25 * kPi / 180));
+  EXPECT_EQ(loaded.scene.lights[1].spot_cos_inner, 1.0f);
+  EXPECT_EQ(loaded.canonical["lights"][0]["cone_angle_degrees"], 30.0);
+  EXPECT_EQ(loaded.canonical["lights"][1]["falloff_start_degrees"], 0.0);
+  expect_round_trip(loaded, scene_path());
 }
 
 TEST_F(SceneLoaderTest, MinimalSceneGetsDefaults) {
@@ -744,7 +778,16 @@ TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
        "an array of 3 numbers"},
       {"cone angle", "/lights/1/half_angle_degrees", 0, "lights[1].half_angle_degrees",
        "a number in (0, 180]"},
-      {"unknown light", "/lights/2/type", "spot", "lights[2].type", "one of: directional, cone"},
+      {"unknown light", "/lights/2/type", "area", "lights[2].type", "one of: directional, cone"},
+      {"spot at its target",
+       "/lights/6/look_at",
+       {0, 4, 0},
+       "lights[6].look_at",
+       "a point different from the light position"},
+      {"spot cone angle", "/lights/6/cone_angle_degrees", 190, "lights[6].cone_angle_degrees",
+       "a number in (0, 180]"},
+      {"spot falloff past the cone", "/lights/6/falloff_start_degrees", 41,
+       "lights[6].falloff_start_degrees", "a number in [0, 40]"},
       {"missing image", "/lights/3/file", "missing.exr", "lights[3].file", "missing.exr"},
       {"scaled env rotation",
        "/lights/3/rotation",

@@ -98,6 +98,7 @@ LightTable::LightTable(const Scene& scene)
     switch (light.kind) {
       case LightKind::kDirectional:
       case LightKind::kPoint:
+      case LightKind::kSpot:
         has_delta_ = true;
         break;
       case LightKind::kCone:
@@ -154,12 +155,17 @@ LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
       s.pdf = selection_pmf_;
       s.delta = true;
       break;
-    case LightKind::kPoint: {
+    case LightKind::kPoint:
+    case LightKind::kSpot: {
       const Vec3 to_light = light.position - p;
       s.distance = length(to_light);
       if (!(s.distance > 0)) return s;
       s.wi = to_light / s.distance;
       s.radiance = light.intensity / (s.distance * s.distance);
+      if (light.kind == LightKind::kSpot) {
+        s.radiance *=
+            smoothstep(light.spot_cos_outer, light.spot_cos_inner, -dot(s.wi, light.spot_axis));
+      }
       s.pdf = selection_pmf_;
       s.delta = true;
       break;
