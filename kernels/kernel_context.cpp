@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "kernels/bsdf/fresnel.h"
+
 namespace snee {
 
 const char* integrator_name(Integrator i) {
@@ -73,6 +75,25 @@ void KernelCounters::add(const KernelCounters& o) {
   }
 }
 
+namespace {
+
+// The diffuse colour, the metal's normal-incidence reflectance, the sheet's reflectance plus
+// transmittance; a rough dielectric is colourless (white).
+Rgb aov_albedo(const SurfaceInfo& info) {
+  switch (info.kind) {
+    case MaterialKind::kDiffuse:
+      return info.albedo;
+    case MaterialKind::kConductor:
+      return fresnel_conductor(1.0f, info.conductor.eta, info.conductor.k);
+    case MaterialKind::kDiffuseTransmission:
+      return info.sheet.reflectance + info.sheet.transmittance;
+    default:
+      return Rgb(1.0f);
+  }
+}
+
+}  // namespace
+
 KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l,
                              Integrator integ, uint32_t seed_, int max_depth_,
                              const SneeOptions& snee_)
@@ -99,7 +120,9 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                      shape.interior_medium,
                      !is_black(shape.emission),
                      {mat.conductor_eta, mat.conductor_k, mat.roughness},
-                     {mat.albedo, mat.transmittance}};
+                     {mat.albedo, mat.transmittance},
+                     Rgb(0.0f)};
+    info.aov_albedo = aov_albedo(info);
     surfaces.push_back(info);
     if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
     if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {

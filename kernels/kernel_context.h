@@ -37,6 +37,8 @@ struct SurfaceInfo {
   bool emissive;
   ConductorParams conductor;
   DiffuseTransmissionParams sheet;
+  // The first-hit albedo AOV (first_hit_aovs.h), fixed per surface, so computed once here.
+  Rgb aov_albedo;
   // A mirror or a smooth dielectric: no light sampling, no AOV vertex.
   bool delta() const {
     return (kind == MaterialKind::kDielectric && dielectric.delta()) ||

@@ -6,7 +6,6 @@
 #include "kernels/bsdf/dielectric.h"
 #include "kernels/bsdf/diffuse.h"
 #include "kernels/bsdf/diffuse_transmission.h"
-#include "kernels/bsdf/fresnel.h"
 #include "kernels/exit_event.h"
 #include "kernels/first_hit_aovs.h"
 #include "kernels/path_ops.h"
@@ -114,21 +113,6 @@ BsdfSample batched_sample(const SurfaceResults& r, size_t k) {
   bs.transmission = (r.flags[k] & kSurfaceSampleTransmission) != 0;
   bs.delta = (r.flags[k] & kSurfaceSampleDelta) != 0;
   return bs;
-}
-
-// The first-hit albedo AOV: the diffuse colour, the metal's normal-incidence reflectance, the
-// sheet's reflectance plus transmittance; a rough dielectric is colourless (white).
-Rgb aov_albedo(const SurfaceInfo& info) {
-  switch (info.kind) {
-    case MaterialKind::kDiffuse:
-      return info.albedo;
-    case MaterialKind::kConductor:
-      return fresnel_conductor(1.0f, info.conductor.eta, info.conductor.k);
-    case MaterialKind::kDiffuseTransmission:
-      return info.sheet.reflectance + info.sheet.transmittance;
-    default:
-      return Rgb(1.0f);
-  }
 }
 
 // The BSDF sample of the surfaces the per-slot pass samples (all but the dielectric), in the
@@ -264,7 +248,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       extend_aov_chain(state, s, state.hit_t[s]);
     } else {
       // The normal faces the arriving ray.
-      close_aov_chain(state, s, state.hit_t[s], aov_albedo(info), dot(d, n) > 0 ? -n : n);
+      close_aov_chain(state, s, state.hit_t[s], info.aov_albedo, dot(d, n) > 0 ? -n : n);
     }
 
     // The exit-event bookkeeping of SNEE needs the vertices before this one.
