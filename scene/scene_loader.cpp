@@ -90,6 +90,27 @@ void check_mesh_coordinates(const TriangleMesh& mesh, const JsonValue& where,
 }
 
 // The three columns of the linear part.
+// A point of the scene read from `value`, within the coordinate bound; `what` names it.
+Vec3 read_point(const JsonValue& value, const std::string& what) {
+  const Vec3 p = value.vec3();
+  check_coordinates(p, value, what);
+  return p;
+}
+
+// The unit direction from `origin` (named by origin_name) to the target read from
+// target_value. Closer than about 1e-19 the squared distance underflows in float and leaves no
+// direction; `purpose` says what the direction is for.
+Vec3 direction_to_target(Vec3 origin, Vec3 target, const JsonValue& target_value,
+                         const std::string& origin_name, const std::string& purpose) {
+  const Vec3 axis = normalize(target - origin);
+  if (!(std::fabs(length(axis) - 1) < 1e-5f)) {
+    target_value.expected("a point different from " + origin_name +
+                          ", far enough from it (about 1e-19) to give " + purpose +
+                          " in single precision");
+  }
+  return axis;
+}
+
 Vec3 column(const Transform& t, int j) {
   return {t.m[0][j], t.m[1][j], t.m[2][j]};
 }
@@ -258,26 +279,18 @@ class SceneReader {
                                          "aperture_radius", "focus_distance", "resolution"});
     if (auto type = obj.optional("type")) type->choice({"pinhole"});
     Camera& camera = out_.scene.camera;
-    const JsonValue position = obj.required("position");
-    camera.position = position.vec3();
-    check_coordinates(camera.position, position, "the camera position");
+    camera.position = read_point(obj.required("position"), "the camera position");
     const JsonValue look_at = obj.required("look_at");
-    camera.look_at = look_at.vec3();
-    check_coordinates(camera.look_at, look_at, "the look_at point");
-    // The renderer builds the camera's frame from normalize(look_at - position) in float; closer
-    // than about 1e-19 the squared distance underflows and leaves no direction.
-    const Vec3 view = camera.look_at - camera.position;
-    if (!(std::fabs(length(normalize(view)) - 1) < 1e-5f)) {
-      look_at.expected(
-          "a point different from the camera position, far enough from it (about 1e-19) to give "
-          "a viewing direction in single precision");
-    }
+    camera.look_at = read_point(look_at, "the look_at point");
+    // The renderer builds the camera's frame from normalize(look_at - position) in float.
+    const Vec3 view = direction_to_target(camera.position, camera.look_at, look_at,
+                                          "the camera position", "a viewing direction");
     Vec3 up_as_given = camera.up;
     if (auto up = obj.optional("up")) {
       const Direction up_direction = up->direction();
       up_as_given = up_direction.given;
       camera.up = up_direction.unit;
-      if (!(length(cross(normalize(view), camera.up)) > 1e-4f)) {
+      if (!(length(cross(view, camera.up)) > 1e-4f)) {
         up->expected("a direction not parallel to the viewing direction");
       }
     }
@@ -865,9 +878,7 @@ class SceneReader {
     } else {
       const JsonObject obj = value.object({"type", "position", "intensity"});
       light.kind = LightKind::kPoint;
-      const JsonValue position = obj.required("position");
-      light.position = position.vec3();
-      check_coordinates(light.position, position, "the light position");
+      light.position = read_point(obj.required("position"), "the light position");
       if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kNonNegative);
       canonical["position"] = to_json(light.position);
       canonical["intensity"] = to_json(light.intensity);
@@ -880,18 +891,11 @@ class SceneReader {
     const JsonObject obj = value.object({"type", "position", "look_at", "intensity",
                                          "cone_angle_degrees", "falloff_start_degrees"});
     light.kind = LightKind::kSpot;
-    const JsonValue position = obj.required("position");
-    light.position = position.vec3();
-    check_coordinates(light.position, position, "the light position");
+    light.position = read_point(obj.required("position"), "the light position");
     const JsonValue look_at_value = obj.required("look_at");
-    const Vec3 look_at = look_at_value.vec3();
-    check_coordinates(look_at, look_at_value, "the look_at point");
-    light.spot_axis = normalize(look_at - light.position);
-    if (!(std::fabs(length(light.spot_axis) - 1) < 1e-5f)) {
-      look_at_value.expected(
-          "a point different from the light position, far enough from it (about 1e-19) to give "
-          "an axis in single precision");
-    }
+    const Vec3 look_at = read_point(look_at_value, "the look_at point");
+    light.spot_axis = direction_to_target(light.position, look_at, look_at_value,
+                                          "the light position", "an axis");
     if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kNonNegative);
     float cone_degrees = 30.0f;
     if (auto cone = obj.optional("cone_angle_degrees")) {
