@@ -70,6 +70,24 @@ TEST(MaterialRender, DiffuseTransmitterReflectsAndTransmitsLambertian) {
   }
 }
 
+// A unit sphere of `material` under a constant environment of radiance 1, seen from distance 4
+// with the given field of view on a square image.
+Film render_sphere_in_furnace(const json& material, double fov, int resolution,
+                              const char* integrator, int spp) {
+  const json doc = {{"camera",
+                     {{"position", {0.0, 0.0, 4.0}},
+                      {"look_at", {0.0, 0.0, 0.0}},
+                      {"fov", fov},
+                      {"resolution", {resolution, resolution}}}},
+                    {"shapes",
+                     {{{"type", "sphere"},
+                       {"center", {0.0, 0.0, 0.0}},
+                       {"radius", 1.0},
+                       {"material", material}}}},
+                    {"lights", {{{"type", "constant"}, {"radiance", 1.0}}}}};
+  return render_doc(doc, integrator, spp);
+}
+
 // Seen through a 2 degree field of view from distance 4, every pixel sees the unit sphere
 // within 4.1 degrees of its normal (cos > 0.997), where the lobe's albedo differs from its
 // value at normal incidence by far less than the tolerance.
@@ -84,18 +102,9 @@ TEST(MaterialRender, RoughGoldSphereShowsTheLobeAlbedo) {
         s.valid ? conductor_fresnel(p, Vec3(0, 0, 1), s.wi) * (s.f * s.wi.z / s.pdf) : Rgb(0.0f);
     for (int c = 0; c < 3; ++c) reference[c].add(w[c]);
   }
-  const json doc = {
-      {"camera",
-       {{"position", {0.0, 0.0, 4.0}},
-        {"look_at", {0.0, 0.0, 0.0}},
-        {"fov", 2.0},
-        {"resolution", {8, 8}}}},
-      {"shapes",
-       {{{"type", "sphere"},
-         {"material", {{"type", "conductor"}, {"metal", "gold"}, {"roughness", 0.3}}}}}},
-      {"lights", {{{"type", "constant"}, {"radiance", 1.0}}}}};
+  const json gold_material = {{"type", "conductor"}, {"metal", "gold"}, {"roughness", 0.3}};
   for (const char* integrator : kIntegrators) {
-    const Film film = render_doc(doc, integrator, 256);
+    const Film film = render_sphere_in_furnace(gold_material, 2.0, 8, integrator, 256);
     for (int c = 0; c < 3; ++c) {
       test::MeanEstimator pixels;
       double variance_of_mean = 0;
@@ -112,28 +121,12 @@ TEST(MaterialRender, RoughGoldSphereShowsTheLobeAlbedo) {
   }
 }
 
-// A unit sphere of `material` under a constant environment of radiance 1, filling a 32x32 view.
-Film render_sphere_furnace(const json& material, const char* integrator, int spp) {
-  const json doc = {{"camera",
-                     {{"position", {0.0, 0.0, 4.0}},
-                      {"look_at", {0.0, 0.0, 0.0}},
-                      {"fov", 35.0},
-                      {"resolution", {32, 32}}}},
-                    {"shapes",
-                     {{{"type", "sphere"},
-                       {"center", {0.0, 0.0, 0.0}},
-                       {"radius", 1.0},
-                       {"material", material}}}},
-                    {"lights", {{{"type", "constant"}, {"radiance", 1.0}}}}};
-  return render_doc(doc, integrator, spp);
-}
-
 // A mirror that reflects everything (eta 0, k 1: F = 1 at every angle) sends each camera ray
 // once into the environment with weight exactly 1: no integrator may see the sphere.
 TEST(MaterialFurnace, WhiteMirrorIsInvisible) {
   const json mirror = {{"type", "conductor"}, {"eta", 0.0}, {"k", 1.0}};
   for (const char* integrator : kIntegrators) {
-    const Film film = render_sphere_furnace(mirror, integrator, 4);
+    const Film film = render_sphere_in_furnace(mirror, 35.0, 32, integrator, 4);
     for (const Rgb& m : film.mean) {
       EXPECT_NEAR(m.x, 1.0f, 1e-6f) << integrator;
       EXPECT_NEAR(m.y, 1.0f, 1e-6f) << integrator;
@@ -151,7 +144,7 @@ TEST(MaterialFurnace, LosslessDiffuseTransmitterIsInvisible) {
                       {"transmittance", {0.8, 0.5, 0.3}}};
   for (const char* integrator : kIntegrators) {
     SCOPED_TRACE(integrator);
-    const Film film = render_sphere_furnace(sheet, integrator, 32);
+    const Film film = render_sphere_in_furnace(sheet, 35.0, 32, integrator, 32);
     EXPECT_GT(test::region_mean(film, std::vector<bool>(film.mean.size(), true)).standard_error,
               0.0);
     test::expect_renders_to_one(film);
