@@ -14,6 +14,7 @@
 #include "scene/mesh_topology.h"
 #include "scene/metals.h"
 #include "scene/procedural_sky.h"
+#include "scene/volume_overlap.h"
 
 namespace snee {
 
@@ -244,6 +245,7 @@ class SceneReader {
       light.shape = static_cast<int>(i);
       scene.lights.push_back(light);
     }
+    check_volumes();
 
     canonical_["name"] = scene.name;
     canonical_["render"] = canonical_render();
@@ -469,6 +471,7 @@ class SceneReader {
                                   " boundary edges); paths inside may leak out through the holes");
         }
       }
+      shape_places_.push_back(shape.source);
       out_.scene.shapes.push_back(std::move(shape));
     }
     for (const Light& light : asset.lights) out_.scene.lights.push_back(light);
@@ -803,7 +806,32 @@ class SceneReader {
     canonical["name"] = shape.name;
     canonical["transform"] = to_json(transform);
     canonical_shapes_.push_back(canonical);
+    shape_places_.push_back(origin_ + ": " + value.path());
     out_.scene.shapes.push_back(std::move(shape));
+  }
+
+  // A path carries one medium at a time (docs/scene-format.md, "Several media").
+  void check_volumes() {
+    const Scene& scene = out_.scene;
+    const auto describe = [&](int shape) {
+      return shape_places_[shape] + " ('" + scene.shapes[shape].name + "')";
+    };
+    for (const VolumeContact& c : find_volume_contacts(scene)) {
+      const std::string relation = c.inside ? " lies inside " : " overlaps ";
+      if (is_volume(scene, c.other)) {
+        throw SceneError(describe(c.other) + relation + describe(c.volume) +
+                         ": both are volumes (a dielectric boundary or an interior medium), and "
+                         "a path carries one medium at a time, so the shared part would render "
+                         "with the wrong one; move them apart (see \"Several media\" in "
+                         "docs/scene-format.md)");
+      }
+      out_.warnings.push_back(
+          describe(c.other) +
+          (c.inside ? " lies inside the volume " : " reaches into the volume ") +
+          describe(c.volume) +
+          ": where it is inside, its shadow rays carry no medium and SNEE "
+          "may take it for the boundary, so its lighting there is not exact");
+    }
   }
 
   Transform read_rotation(const JsonValue& value) {
@@ -919,6 +947,7 @@ class SceneReader {
   std::string base_dir_;
   MemoryBudget budget_;
   LoadedScene out_;
+  std::vector<std::string> shape_places_;              // shape index -> JSON path or glTF element
   std::map<std::string, std::string> material_names_;  // name -> JSON path of its definition
   std::map<std::string, std::string> medium_names_;
   json canonical_ = json::object();

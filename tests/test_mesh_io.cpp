@@ -17,6 +17,7 @@
 #include "scene/scene_error.h"
 #include "tests/support/scene_error_of.h"
 #include "tests/support/test_directory.h"
+#include "tests/support/unit_cube.h"
 
 namespace snee {
 namespace {
@@ -40,22 +41,7 @@ class MeshIoTest : public ::testing::Test {
 };
 
 using test::scene_error_of;
-
-// A unit cube [0,1]^3 with outward (counter-clockwise from outside) winding.
-TriangleMesh unit_cube() {
-  TriangleMesh m;
-  for (int i = 0; i < 8; ++i) {
-    m.positions.push_back(Vec3(static_cast<float>(i & 1), static_cast<float>((i >> 1) & 1),
-                               static_cast<float>((i >> 2) & 1)));
-  }
-  m.indices = {0, 2, 3, 0, 3, 1,   // z = 0, normal -z
-               4, 5, 7, 4, 7, 6,   // z = 1, normal +z
-               0, 1, 5, 0, 5, 4,   // y = 0, normal -y
-               2, 6, 7, 2, 7, 3,   // y = 1, normal +y
-               0, 4, 6, 0, 6, 2,   // x = 0, normal -x
-               1, 3, 7, 1, 7, 5};  // x = 1, normal +x
-  return m;
-}
+using test::unit_cube;
 
 TEST_F(MeshIoTest, ObjPolygonsBecomeTriangleFans) {
   const std::string path = write("quad.obj",

@@ -56,7 +56,7 @@ RegionStats region_mean(const Film& film, const std::vector<bool>& mask) {
   return r;
 }
 
-std::vector<bool> sphere_mask(const Scene& scene) {
+std::vector<bool> sphere_mask(const Scene& scene, Vec3 center, float radius) {
   const Camera& c = scene.camera;
   const Vec3 forward = normalize(c.look_at - c.position);
   const Vec3 right = normalize(cross(forward, c.up));
@@ -67,9 +67,9 @@ std::vector<bool> sphere_mask(const Scene& scene) {
     const float x = (2.0f * px / c.width - 1.0f) * tan_half * aspect;
     const float y = (1.0f - 2.0f * py / c.height) * tan_half;
     const Vec3 d = normalize(forward + right * x + up * y);
-    const Vec3 o = c.position;
+    const Vec3 o = c.position - center;
     const float b = dot(o, d);
-    return b * b - (dot(o, o) - 1.0f) > 0;
+    return b * b - (dot(o, o) - radius * radius) > 0;
   };
   std::vector<bool> mask(static_cast<size_t>(c.width) * c.height);
   for (int y = 0; y < c.height; ++y) {

@@ -25,9 +25,10 @@ struct RegionStats {
 // Mean of channel-averaged pixel values over the pixels where mask is true, with the standard
 // error of that mean from the per-pixel variances (pixels are independent).
 RegionStats region_mean(const Film& film, const std::vector<bool>& mask);
-// The pixels whose camera ray hits the unit sphere at the origin (exactly, at the pixel centre
-// footprint: all four corners inside the silhouette).
-std::vector<bool> sphere_mask(const Scene& scene);
+// The pixels whose camera ray hits the sphere (by default the unit sphere at the origin) in
+// their whole footprint: all four corners inside the silhouette. For a pinhole camera with a
+// vertical fov.
+std::vector<bool> sphere_mask(const Scene& scene, Vec3 center = {0, 0, 0}, float radius = 1);
 // Expects the whole image and each of its 8x8 blocks to average to 1 within their standard
 // errors (4 and 5 SE), as a white furnace must.
 void expect_renders_to_one(const Film& film);
