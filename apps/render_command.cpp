@@ -35,19 +35,6 @@ std::string output_name(const Scene& scene, const std::string& spec) {
   return fs::path(spec).stem().string();
 }
 
-// Non-finite samples count as 0 in the image, which darkens it without a trace: say so.
-void warn_about_nonfinite_samples(const RenderStats& stats) {
-  if (stats.nonfinite_samples == 0) return;
-  const double percent = stats.paths > 0 ? 100.0 * static_cast<double>(stats.nonfinite_samples) /
-                                               static_cast<double>(stats.paths)
-                                         : 100.0;
-  std::fprintf(stderr,
-               "warning: %llu of %llu samples (%.3g%%) were not finite (NaN or infinite) and count "
-               "as 0 in the image\n",
-               static_cast<unsigned long long>(stats.nonfinite_samples),
-               static_cast<unsigned long long>(stats.paths), percent);
-}
-
 // "64 spp", or what the budgets left of it: "24 of 1000 spp (time budget spent)", "mean 37.5
 // spp, 16 to 256 (noise target 0.05)".
 std::string samples_summary(const RenderResult& result, int spp) {
@@ -377,7 +364,8 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   }
   if (distribution.join && !distribution.join(result, exit_status)) return exit_status;
 
-  warn_about_nonfinite_samples(result.stats);
+  const std::string nonfinite = nonfinite_warning(result.stats);
+  if (!nonfinite.empty()) std::fprintf(stderr, "%s\n", nonfinite.c_str());
   write_images(result.film, images);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
   if (result.complete) {

@@ -1,6 +1,7 @@
 #include "apps/stats_json.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -89,6 +90,20 @@ void write_json_file(const nlohmann::ordered_json& json, const std::string& path
   if (!out)
     throw std::runtime_error("cannot write '" + path + "'" +
                              (errno != 0 ? std::string(": ") + std::strerror(errno) : ""));
+}
+
+std::string nonfinite_warning(const RenderStats& stats) {
+  if (stats.nonfinite_samples == 0) return "";
+  const double percent = stats.paths > 0 ? 100.0 * static_cast<double>(stats.nonfinite_samples) /
+                                               static_cast<double>(stats.paths)
+                                         : 100.0;
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "warning: %llu of %llu samples (%.3g%%) were not finite (NaN or infinite) and "
+                "count as 0 in the image",
+                static_cast<unsigned long long>(stats.nonfinite_samples),
+                static_cast<unsigned long long>(stats.paths), percent);
+  return text;
 }
 
 }  // namespace snee

@@ -24,6 +24,11 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
 // The SNEE options as `--stats` and the EXR's snee:render_options write them.
 nlohmann::ordered_json snee_options_json(const SneeOptions& snee);
 
+// Non-finite samples count as 0 in the image, which darkens it without a trace: the warning
+// a render prints at its end ("warning: 3 of 1024 samples (0.293%) were not finite ..."), or
+// "" when every sample was finite.
+std::string nonfinite_warning(const RenderStats& stats);
+
 // Throws std::runtime_error naming the file if it cannot be written.
 void write_json_file(const nlohmann::ordered_json& json, const std::string& path);
 

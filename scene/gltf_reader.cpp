@@ -285,7 +285,7 @@ class GltfReader {
       check_unit(element + ".emissiveFactor[" + std::to_string(i) + "]", m.emissiveFactor[i]);
     }
     const double strength = extension_number(m.extensions, "KHR_materials_emissive_strength",
-                                             "emissiveStrength", 1, element, 0, 1e30);
+                                             "emissiveStrength", 1, element, 0, kMaxBrightness);
     out.emission = factor_rgb(m.emissiveFactor, Rgb(0.0f)) * static_cast<float>(strength);
     if (!is_finite(out.emission)) {
       fail(element, "emissiveFactor times emissiveStrength is beyond single-precision range");
@@ -433,7 +433,7 @@ class GltfReader {
     for (size_t i = 0; i < l.color.size(); ++i) {
       check_unit(light_element + ".color[" + std::to_string(i) + "]", l.color[i]);
     }
-    if (!(l.intensity >= 0 && l.intensity <= 1e30)) {
+    if (!(l.intensity >= 0 && l.intensity <= kMaxBrightness)) {
       fail(light_element + ".intensity", "expected a number in [0, 1e30]");
     }
     const Rgb power = factor_rgb(l.color, Rgb(1.0f)) * static_cast<float>(l.intensity);

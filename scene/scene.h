@@ -19,6 +19,13 @@ namespace snee {
 // Embree accepts (|x| < 1.8e18; beyond it Embree aborts on an invalid ray).
 inline constexpr float kMaxCoordinate = 1e12f;
 
+// Brightest light a scene may hold: an emission, radiance, irradiance or intensity per channel
+// (an environment light's scale times its brightest pixel). Path throughputs rarely exceed
+// 1e8 (refraction's eta^2 per crossing, 1/pdf of a grazing sample), so a sample stays below
+// float's 3.4e38 and a film of them stays finite: brighter lights only ever produced
+// non-finite samples. glTF lights and emissive strengths have the same bound.
+inline constexpr double kMaxBrightness = 1e30;
+
 // Longest image edge in pixels, for a scene's camera resolution and the command line's
 // --resolution alike: a width * height pixel index (at most 2^30) fits an int.
 inline constexpr int kMaxImageEdge = 1 << 15;

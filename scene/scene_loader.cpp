@@ -27,6 +27,7 @@ using nlohmann::json;
 // (SNEE_DATA_DIR), wherever the scene file lives.
 constexpr std::string_view kDataPrefix = "data/";
 constexpr int kSkyWidth = 128, kSkyHeight = 64;
+constexpr NumberRange kBrightness{0.0, kMaxBrightness};
 
 json to_json(Vec3 v) {
   return json::array({v.x, v.y, v.z});
@@ -137,9 +138,10 @@ bool is_rotation(const Transform& t) {
 void check_scaled_image(const EnvImage& image, Rgb scale, const JsonValue& where) {
   Rgb brightest(0.0f);
   for (const Rgb& pixel : image.pixels) brightest = vmax(brightest, pixel);
-  if (!is_finite(scale * brightest)) {
+  const Rgb product = scale * brightest;
+  if (!is_finite(product) || max_component(product) > kMaxBrightness) {
     where.expected("a scale whose product with the image's brightest pixel " +
-                   describe_point(brightest) + " is finite in single precision");
+                   describe_point(brightest) + " is at most 1e30 (kMaxBrightness)");
   }
 }
 
@@ -801,7 +803,7 @@ class SceneReader {
                                 " boundary edges); paths inside may leak out through the holes");
       }
     }
-    if (auto emission = obj.optional("emission")) shape.emission = emission->rgb(kNonNegative);
+    if (auto emission = obj.optional("emission")) shape.emission = emission->rgb(kBrightness);
     canonical["emission"] = to_json(shape.emission);
     canonical["name"] = shape.name;
     canonical["transform"] = to_json(transform);
@@ -850,7 +852,7 @@ class SceneReader {
       light.kind = LightKind::kDirectional;
       const Direction direction = obj.required("direction").direction();
       light.direction = direction.unit;
-      if (auto e = obj.optional("irradiance")) light.irradiance = e->rgb(kNonNegative);
+      if (auto e = obj.optional("irradiance")) light.irradiance = e->rgb(kBrightness);
       canonical["direction"] = to_json(direction.given);
       canonical["irradiance"] = to_json(light.irradiance);
     } else if (type == "cone") {
@@ -868,14 +870,14 @@ class SceneReader {
             "an angle in (0, 180] whose cosine is below 1 in single precision (at least about "
             "0.014 degrees)");
       }
-      if (auto l = obj.optional("radiance")) light.radiance = l->rgb(kNonNegative);
+      if (auto l = obj.optional("radiance")) light.radiance = l->rgb(kBrightness);
       canonical["direction"] = to_json(direction.given);
       canonical["half_angle_degrees"] = half_angle_degrees;
       canonical["radiance"] = to_json(light.radiance);
     } else if (type == "constant") {
       const JsonObject obj = value.object({"type", "radiance"});
       light.kind = LightKind::kConstantEnv;
-      if (auto l = obj.optional("radiance")) light.radiance = l->rgb(kNonNegative);
+      if (auto l = obj.optional("radiance")) light.radiance = l->rgb(kBrightness);
       canonical["radiance"] = to_json(light.radiance);
     } else if (type == "envmap" || type == "sky") {
       const JsonObject obj = type == "envmap" ? value.object({"type", "file", "scale", "rotation"})
@@ -894,10 +896,9 @@ class SceneReader {
         out_.scene.env_images.push_back(make_soft_sky(kSkyWidth, kSkyHeight));
       }
       light.env_image = static_cast<int>(out_.scene.env_images.size() - 1);
-      if (auto scale = obj.optional("scale")) {
-        light.radiance = scale->rgb(kNonNegative);
-        check_scaled_image(out_.scene.env_images.back(), light.radiance, *scale);
-      }
+      const std::optional<JsonValue> scale = obj.optional("scale");
+      if (scale) light.radiance = scale->rgb(kBrightness);
+      check_scaled_image(out_.scene.env_images.back(), light.radiance, scale ? *scale : value);
       if (auto rotation = obj.optional("rotation")) light.env_rotation = read_rotation(*rotation);
       canonical["scale"] = to_json(light.radiance);
       canonical["rotation"] = to_json(light.env_rotation);
@@ -907,7 +908,7 @@ class SceneReader {
       const JsonObject obj = value.object({"type", "position", "intensity"});
       light.kind = LightKind::kPoint;
       light.position = read_point(obj.required("position"), "the light position");
-      if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kNonNegative);
+      if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kBrightness);
       canonical["position"] = to_json(light.position);
       canonical["intensity"] = to_json(light.intensity);
     }
@@ -924,7 +925,7 @@ class SceneReader {
     const Vec3 look_at = read_point(look_at_value, "the look_at point");
     light.spot_axis = direction_to_target(light.position, look_at, look_at_value,
                                           "the light position", "an axis");
-    if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kNonNegative);
+    if (auto i = obj.optional("intensity")) light.intensity = i->rgb(kBrightness);
     float cone_degrees = 30.0f;
     if (auto cone = obj.optional("cone_angle_degrees")) {
       cone_degrees = cone->real({0.0, 180.0, true, false});

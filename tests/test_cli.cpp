@@ -14,7 +14,10 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/output_files.h"
+#include "apps/stats_json.h"
 #include "scene/film.h"
+#include "scene/scene_loader.h"
+#include "scheduler/render.h"
 #include "tests/support/command_line.h"
 #include "tests/support/test_directory.h"
 
@@ -388,20 +391,38 @@ TEST_F(CliTest, OutputNamesOfNameMaxBytesWork) {
 
 // A radiance near the top of float's range is valid, yet its paths overflow to infinity:
 // the count of such samples reaches the statistics, stderr and the EXR.
+// A light brighter than kMaxBrightness only ever produced non-finite samples, so the loader
+// refuses it. The renderer, given one anyway (a Scene built in code), counts its non-finite
+// samples, and every report carries the count: RenderStats, the EXR metadata after a write and
+// read, --stats and the warning the CLI prints at the end.
 TEST_F(CliTest, NonFiniteSamplesAreReported) {
-  write_file(path("bright.json"), R"({
+  const std::string bright = R"({
     "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40, "resolution": [16, 16]},
     "lights": [{"type": "constant", "radiance": 3e38}],
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
-                "material": {"type": "diffuse", "albedo": 0.5}}]})");
-  const Outcome run = snee("render bright.json --spp 4 --quiet -o b.exr --stats b.json");
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto stats = nlohmann::json::parse(read_file(path("b.json")));
-  const uint64_t nonfinite = stats["nonfinite_samples"].get<uint64_t>();
+                "material": {"type": "diffuse", "albedo": 0.5}}]})";
+  write_file(path("bright.json"), bright);
+  const Outcome refused = snee("render bright.json --spp 4 --quiet -o b.exr");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "bright.json: lights[0].radiance")) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "1e+30")) << refused.output;
+
+  nlohmann::json doc = nlohmann::json::parse(bright);
+  doc["lights"][0]["radiance"] = 1.0;
+  Scene scene = load_scene_json(doc, "bright", ".").scene;
+  scene.lights[0].radiance = Rgb(3e38f);
+  RenderOptions options;
+  options.spp = 4;
+  const RenderResult result = render(scene, options);
+  const uint64_t nonfinite = result.stats.nonfinite_samples;
   EXPECT_GT(nonfinite, 0u);
-  EXPECT_TRUE(contains(run.output, "warning: " + std::to_string(nonfinite) + " of 1024 samples"))
-      << run.output;
+  EXPECT_EQ(result.film.meta.nonfinite_samples, nonfinite);
+  write_exr(result.film, path("b.exr"));
   EXPECT_EQ(read_exr(path("b.exr")).meta.nonfinite_samples, nonfinite);
+  EXPECT_EQ(stats_json("bright", options, result)["nonfinite_samples"], nonfinite);
+  EXPECT_TRUE(contains(nonfinite_warning(result.stats),
+                       "warning: " + std::to_string(nonfinite) + " of 1024 samples"))
+      << nonfinite_warning(result.stats);
 
   const Outcome clean = snee(
       "render builtin:furnace-sphere --resolution 8x8 --spp 1 --quiet "
