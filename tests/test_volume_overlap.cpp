@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <string>
 
 #include "scene/scene_loader.h"
@@ -236,6 +237,18 @@ TEST(VolumeOverlap, TheLoaderWarnsOfAnOpaqueShapeInsideAMedium) {
                          "('wax')"),
             std::string::npos)
       << warning;
+}
+
+// The example of docs/scene-format.md ("Several media"): three volumes resting on a floor at a
+// point each, so no contact and no warning.
+TEST(VolumeOverlap, TheThreeMediaExampleLoadsWithoutWarnings) {
+  const std::filesystem::path example =
+      std::filesystem::path(SNEE_PROJECT_DATA_DIR).parent_path() / "docs/examples/three-media.json";
+  const LoadedScene loaded = load_scene_file(example.string());
+  ASSERT_EQ(loaded.scene.media.size(), 3u);
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(is_volume(loaded.scene, i));
+  EXPECT_TRUE(find_volume_contacts(loaded.scene).empty());
+  EXPECT_TRUE(loaded.warnings.empty());
 }
 
 }  // namespace
