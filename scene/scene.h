@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/light_selection.h"
 #include "scene/math.h"
 
 namespace snee {
@@ -150,6 +151,7 @@ struct RenderSettings {
   std::string integrator = "pt";
   // Adaptive sampling's relative standard error (docs/budgets.md); 0: every pixel takes spp.
   double noise_target = 0;
+  LightSelection light_selection = LightSelection::kUniform;
 };
 
 struct Scene {

@@ -1,6 +1,7 @@
 // Light sampling: every sample's pdf agrees with the pdf used for MIS (escaped_pdf, area_pdf),
 // sampled directions follow that pdf (chi-square), and irradiance estimated from the samples
-// matches closed forms or an independent estimator.
+// matches closed forms or an independent estimator, under uniform and power light selection;
+// power selection follows the documented estimates (docs/lights.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,6 +26,7 @@ constexpr double kMaxZ = 4;
 constexpr int kSamples = 1'000'000;
 // Recomputing a pdf from the sampled point takes a handful of float operations.
 constexpr float kPdfRelativeTolerance = 64 * FLT_EPSILON;
+constexpr LightSelection kSelections[] = {LightSelection::kUniform, LightSelection::kPower};
 
 Light directional_light(Vec3 direction, Rgb irradiance) {
   Light l;
@@ -135,7 +137,6 @@ using test::corner_form_factor;
 // The pdf of every sample agrees with the pdf MIS uses for the same direction or point.
 void expect_round_trip(const Scene& scene, const LightTable& lights, Vec3 p, uint64_t seed) {
   TestRng rng(seed);
-  const float selection = 1.0f / static_cast<float>(scene.lights.size());
   int valid = 0;
   for (int k = 0; k < 100000; ++k) {
     const float u_select = rng.uniform();
@@ -144,7 +145,15 @@ void expect_round_trip(const Scene& scene, const LightTable& lights, Vec3 p, uin
     ++valid;
     ASSERT_NEAR(length(s.wi), 1.0f, 4 * FLT_EPSILON);
     if (s.delta) {
-      ASSERT_EQ(s.pdf, selection);
+      // The pdf of a delta light is its selection probability.
+      bool found = false;
+      for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const LightKind kind = scene.lights[i].kind;
+        const bool delta = kind == LightKind::kDirectional || kind == LightKind::kPoint ||
+                           kind == LightKind::kSpot;
+        found = found || (delta && s.pdf == lights.selection_pmf(static_cast<int>(i)));
+      }
+      ASSERT_TRUE(found) << "delta pdf " << s.pdf << " is no delta light's selection pmf";
     } else if (std::isinf(s.distance)) {
       ASSERT_EQ(s.pdf, lights.escaped_pdf(s.wi));
       ASSERT_EQ(s.radiance, lights.escaped_radiance(s.wi));
@@ -277,7 +286,7 @@ TEST(Lights, SpotIrradianceOnAPlane) {
   const Vec3 spot(0, 0, 2), bulb(0, 3, 3);
   scene.lights.push_back(spot_light(spot, Vec3(0.0f), Rgb(5.0f), 40, 20));
   scene.lights.push_back(point_light(bulb, Rgb(2.0f)));
-  const LightTable lights(scene);
+  const LightTable lights(scene, LightSelection::kPower);
   const Vec3 n(0, 0, 1);
   for (const float x : {0.0f, 0.5f, 0.9f, 1.3f, 2.0f}) {
     const Vec3 p(x, 0, 0);
@@ -313,19 +322,21 @@ TEST(Lights, SpotWithFullConeIsAPointLight) {
   for (Scene* scene : {&with_spot, &with_point}) {
     scene->lights.push_back(cone_light(Vec3(0, 1, 0), 0.4f, Rgb(2.0f)));
   }
-  const LightTable spot(with_spot), point(with_point);
-  TestRng rng(61);
-  for (int k = 0; k < 10000; ++k) {
-    const Vec3 p = sample_uniform_sphere(rng.uniform2()) * 3.0f;
-    const float u_select = rng.uniform();
-    const Vec2 u = rng.uniform2();
-    const LightSample a = spot.sample(p, u_select, u), b = point.sample(p, u_select, u);
-    ASSERT_EQ(a.valid, b.valid);
-    ASSERT_EQ(a.wi, b.wi);
-    ASSERT_EQ(a.distance, b.distance);
-    ASSERT_EQ(a.radiance, b.radiance);
-    ASSERT_EQ(a.pdf, b.pdf);
-    ASSERT_EQ(a.delta, b.delta);
+  for (const LightSelection selection : kSelections) {
+    const LightTable spot(with_spot, selection), point(with_point, selection);
+    TestRng rng(61);
+    for (int k = 0; k < 10000; ++k) {
+      const Vec3 p = sample_uniform_sphere(rng.uniform2()) * 3.0f;
+      const float u_select = rng.uniform();
+      const Vec2 u = rng.uniform2();
+      const LightSample a = spot.sample(p, u_select, u), b = point.sample(p, u_select, u);
+      ASSERT_EQ(a.valid, b.valid);
+      ASSERT_EQ(a.wi, b.wi);
+      ASSERT_EQ(a.distance, b.distance);
+      ASSERT_EQ(a.radiance, b.radiance);
+      ASSERT_EQ(a.pdf, b.pdf);
+      ASSERT_EQ(a.delta, b.delta);
+    }
   }
 }
 
@@ -354,18 +365,24 @@ TEST(Lights, OverlappingEscapedLightsChi2) {
   const Vec3 axis = normalize(Vec3(0, 1, -1));
   scene.lights.push_back(cone_light(axis, 0.5f, Rgb(3.0f)));
   scene.lights.push_back(constant_env(Rgb(0.5f)));
-  const LightTable lights(scene);
-  TestRng rng(12);
-  const auto r = test::chi2_sphere(
-      [&]() -> std::optional<Vec3> {
-        const float u_select = rng.uniform();
-        const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
-        if (!s.valid) return std::nullopt;
-        return s.wi;
-      },
-      [&](Vec3 w) { return lights.escaped_pdf(w); }, {.axis = axis});
-  EXPECT_GT(r.p_value, kMinPValue) << r.report;
-  expect_round_trip(scene, lights, Vec3(0.0f), 13);
+  // A sphere to give the distant lights a scene radius; its power estimates then weight the
+  // mixture unevenly.
+  add_area_light(scene, sphere_emitter(Vec3(0, 0, 5), 1.0f, Rgb(1.0f)));
+  for (const LightSelection selection : kSelections) {
+    const LightTable lights(scene, selection);
+    TestRng rng(12);
+    const auto r = test::chi2_sphere(
+        [&]() -> std::optional<Vec3> {
+          const float u_select = rng.uniform();
+          const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
+          // The sphere's samples are the failure cell, of probability 1 - its selection pmf.
+          if (!s.valid || !std::isinf(s.distance)) return std::nullopt;
+          return s.wi;
+        },
+        [&](Vec3 w) { return lights.escaped_pdf(w); }, {.axis = axis});
+    EXPECT_GT(r.p_value, kMinPValue) << r.report;
+    expect_round_trip(scene, lights, Vec3(0.0f), 13);
+  }
 }
 
 TEST(Lights, ConeIrradiance) {
@@ -391,9 +408,12 @@ TEST(Lights, DirectionalIrradianceWithSelection) {
   const Vec3 n = normalize(Vec3(0, 1, 0.3f));
   scene.lights.push_back(directional_light(Vec3(0.2f, 1, 0), Rgb(4.0f)));
   scene.lights.push_back(constant_env(Rgb(0.5f)));
-  const LightTable lights(scene);
   const double expected = 4.0 * dot(n, normalize(Vec3(0.2f, 1, 0))) + 0.5 * M_PI;
-  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 16), expected, "directional + constant");
+  for (const LightSelection selection : kSelections) {
+    const LightTable lights(scene, selection);
+    expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 16), expected,
+                  light_selection_name(selection));
+  }
 }
 
 // Samples binned in map (u,v) space, two by two bins per pixel, against escaped_pdf: a bin's
@@ -544,18 +564,68 @@ TEST(Lights, AllKindsTogether) {
   scene.lights.push_back(point_light(Vec3(0, 2, 2), Rgb(3.0f)));
   add_area_light(scene, square_emitter(1.0f, Rgb(2.0f)));
   add_area_light(scene, sphere_emitter(Vec3(3, 0, 3), 1.0f, Rgb(5.0f)));
-  const LightTable lights(scene);
-  expect_round_trip(scene, lights, Vec3(0.0f), 41);
+  for (const LightSelection selection : kSelections) {
+    const LightTable lights(scene, selection);
+    expect_round_trip(scene, lights, Vec3(0.0f), 41);
 
-  const double directional = 1.5 * dot(n, normalize(Vec3(0.5f, 0, 1)));
-  const double cone = 4.0 * M_PI * std::pow(std::sin(0.3), 2);
-  const double point = 3.0 * (2.0 / std::sqrt(8.0)) / 8.0;
-  const double square = 2.0 * M_PI * 4 * corner_form_factor(0.5, 0.5, 1.0);
-  // The sphere's axis is 45 degrees off the normal but its cap stays above the horizon, where
-  // the cosine-weighted integral over a cap is pi sin^2(alpha) cos(axis angle).
-  const double sphere = 5.0 * M_PI * (1.0 / 18.0) * std::cos(M_PI / 4);
-  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 42),
-                directional + cone + point + square + sphere, "all kinds");
+    const double directional = 1.5 * dot(n, normalize(Vec3(0.5f, 0, 1)));
+    const double cone = 4.0 * M_PI * std::pow(std::sin(0.3), 2);
+    const double point = 3.0 * (2.0 / std::sqrt(8.0)) / 8.0;
+    const double square = 2.0 * M_PI * 4 * corner_form_factor(0.5, 0.5, 1.0);
+    // The sphere's axis is 45 degrees off the normal but its cap stays above the horizon, where
+    // the cosine-weighted integral over a cap is pi sin^2(alpha) cos(axis angle).
+    const double sphere = 5.0 * M_PI * (1.0 / 18.0) * std::cos(M_PI / 4);
+    expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 42),
+                  directional + cone + point + square + sphere, light_selection_name(selection));
+  }
+}
+
+// Power selection: probabilities in proportion to the estimates of docs/lights.md, written
+// out here. The square emitter (the only shape) gives the distant lights a scene radius of
+// half its bounding box's diagonal, sqrt(2) / 2.
+TEST(Lights, PowerSelectionFollowsTheEstimates) {
+  Scene scene;
+  scene.lights.push_back(directional_light(Vec3(0, 0, 1), Rgb(1.0f)));
+  scene.lights.push_back(cone_light(Vec3(0, 0, 1), 0.3f, Rgb(4.0f)));
+  scene.lights.push_back(constant_env(Rgb(0.1f)));
+  scene.lights.push_back(point_light(Vec3(0, 2, 2), Rgb(3.0f)));
+  scene.lights.push_back(spot_light(Vec3(0, 0, 2), Vec3(0.0f), Rgb(5.0f), 40, 20));
+  add_area_light(scene, square_emitter(1.0f, Rgb(2.0f)));
+  const double disk = M_PI * 0.5;  // pi R^2
+  const double cos_outer = std::cos(40 * M_PI / 180), cos_inner = std::cos(20 * M_PI / 180);
+  const std::vector<double> power = {
+      1.0 * disk,     4.0 * 2 * M_PI * (1 - std::cos(0.3)) * disk,        0.1 * 4 * M_PI * disk,
+      3.0 * 4 * M_PI, 5.0 * 2 * M_PI * (1 - (cos_outer + cos_inner) / 2), 2.0 * 1.0 * M_PI,
+  };
+  double total = 0;
+  for (const double p : power) total += p;
+  const LightTable lights(scene, LightSelection::kPower);
+  for (size_t i = 0; i < power.size(); ++i) {
+    EXPECT_NEAR(lights.selection_pmf(static_cast<int>(i)), power[i] / total, 1e-6) << "light " << i;
+  }
+  const LightTable uniform(scene);
+  for (size_t i = 0; i < power.size(); ++i) {
+    EXPECT_EQ(uniform.selection_pmf(static_cast<int>(i)), 1.0f / 6) << "light " << i;
+  }
+}
+
+// A light whose estimate is 0 (a distant light with no shape to give a scene radius, a black
+// light) still gets a selection probability: the mean of the others' estimates.
+TEST(Lights, PowerSelectionNeverStarvesALight) {
+  Scene scene;
+  scene.lights.push_back(directional_light(Vec3(0, 0, 1), Rgb(1.0f)));
+  scene.lights.push_back(point_light(Vec3(0, 0, 2), Rgb(1.0f)));
+  scene.lights.push_back(point_light(Vec3(0, 0, 2), Rgb(3.0f)));
+  scene.lights.push_back(point_light(Vec3(0, 0, 2), Rgb(0.0f)));
+  const LightTable lights(scene, LightSelection::kPower);
+  // Estimates 0, 4 pi, 12 pi, 0: the two zeros get the mean 8 pi; 32 pi in all.
+  EXPECT_NEAR(lights.selection_pmf(0), 0.25f, 1e-6f);
+  EXPECT_NEAR(lights.selection_pmf(1), 0.125f, 1e-6f);
+  EXPECT_NEAR(lights.selection_pmf(2), 0.375f, 1e-6f);
+  EXPECT_NEAR(lights.selection_pmf(3), 0.25f, 1e-6f);
+  const Vec3 n(0, 0, 1);
+  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 43, 100000), 1.0 + 4.0 / 4.0,
+                "directional + points");
 }
 
 }  // namespace

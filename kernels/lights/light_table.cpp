@@ -81,9 +81,66 @@ float visible_cone_cos(const Shape& sphere, Vec3 p) {
   return std::nextafter(cos_max, -1.0f);
 }
 
+// Half the diagonal of the box around every shape: a sphere about its centre holds the scene.
+double scene_radius(const Scene& scene) {
+  Vec3 lo(kInfinity), hi(-kInfinity);
+  for (const Shape& shape : scene.shapes) {
+    if (shape.kind == ShapeKind::kSphere) {
+      lo = vmin(lo, shape.center - Vec3(shape.radius));
+      hi = vmax(hi, shape.center + Vec3(shape.radius));
+    } else {
+      for (const Vec3& q : shape.mesh.positions) {
+        lo = vmin(lo, q);
+        hi = vmax(hi, q);
+      }
+    }
+  }
+  if (!(lo.x <= hi.x)) return 0;
+  const Vec3 d = hi - lo;
+  return 0.5 * std::sqrt(static_cast<double>(d.x) * d.x + static_cast<double>(d.y) * d.y +
+                         static_cast<double>(d.z) * d.z);
+}
+
+// Mean luminance of an environment image over the sphere of directions (pixels weighted by
+// the solid angle of their row).
+double env_mean_luminance(const EnvImage& image) {
+  double sum = 0, solid_angle = 0;
+  for (int y = 0; y < image.height; ++y) {
+    const double sin_theta = std::sin((y + 0.5) * M_PI / image.height);
+    for (int x = 0; x < image.width; ++x) {
+      const Rgb& c = image.pixels[static_cast<size_t>(y) * image.width + x];
+      sum += luminance(vmax(c, Rgb(0.0f))) * sin_theta;
+      solid_angle += sin_theta;
+    }
+  }
+  return solid_angle > 0 ? sum / solid_angle : 0.0;
+}
+
+// Selection weights from power estimates. A light whose estimate is not a positive number
+// (a black light, or a distant one in a scene without shapes) gets the mean of the others, so
+// that no light that may contribute is left with probability 0.
+std::vector<float> selection_weights(const std::vector<double>& power) {
+  double sum = 0;
+  int counted = 0;
+  for (const double p : power) {
+    if (p > 0 && std::isfinite(p)) {
+      sum += p;
+      ++counted;
+    }
+  }
+  const double fallback = counted > 0 ? sum / counted : 1.0;
+  std::vector<float> weights(power.size());
+  for (size_t i = 0; i < power.size(); ++i) {
+    const double p = power[i] > 0 && std::isfinite(power[i]) ? power[i] : fallback;
+    // Relative to the mean, so that float keeps every weight whatever the scene's units.
+    weights[i] = static_cast<float>(p / fallback);
+  }
+  return weights;
+}
+
 }  // namespace
 
-LightTable::LightTable(const Scene& scene)
+LightTable::LightTable(const Scene& scene, LightSelection selection)
     : scene_(&scene),
       lights_(scene.lights),
       cone_cos_(lights_.size(), 1.0f),
@@ -91,7 +148,6 @@ LightTable::LightTable(const Scene& scene)
       light_of_shape_(scene.shapes.size(), -1),
       env_of_light_(lights_.size(), -1) {
   if (lights_.empty()) return;
-  selection_pmf_ = 1.0f / static_cast<float>(lights_.size());
   for (size_t i = 0; i < lights_.size(); ++i) {
     const Light& light = lights_[i];
     if (is_escaping(light.kind)) escaping_.push_back(static_cast<int>(i));
@@ -140,19 +196,59 @@ LightTable::LightTable(const Scene& scene)
       }
     }
   }
+  std::vector<float> weights(lights_.size(), 1.0f);
+  if (selection == LightSelection::kPower) {
+    const double radius = scene_radius(scene);
+    std::vector<double> power(lights_.size());
+    for (size_t i = 0; i < lights_.size(); ++i) {
+      power[i] = estimated_power(static_cast<int>(i), radius);
+    }
+    weights = selection_weights(power);
+  }
+  selection_ = AliasTable(weights);
+}
+
+double LightTable::estimated_power(int light, double radius) const {
+  const Light& l = lights_[light];
+  // Distant lights: the power their radiance carries through a disk of the scene's radius
+  // facing each direction, pi R^2 times the radiance integrated over the sphere.
+  const double disk = M_PI * radius * radius;
+  switch (l.kind) {
+    case LightKind::kDirectional:
+      return luminance(l.irradiance) * disk;
+    case LightKind::kCone:
+      return luminance(l.radiance) * 2.0 * M_PI * (1.0 - cone_cos_[light]) * disk;
+    case LightKind::kConstantEnv:
+      return luminance(l.radiance) * 4.0 * M_PI * disk;
+    case LightKind::kEnvMap:
+      return luminance(l.radiance) * env_mean_luminance(*envs_[env_of_light_[light]].image) * 4.0 *
+             M_PI * disk;
+    case LightKind::kPoint:
+      return luminance(l.intensity) * 4.0 * M_PI;
+    case LightKind::kSpot:
+      // The smoothstep falloff integrates to half its band of cosines, so the solid angle is
+      // exactly 2 pi (1 - (cos_outer + cos_inner) / 2).
+      return luminance(l.intensity) * 2.0 * M_PI *
+             (1.0 - 0.5 * (static_cast<double>(l.spot_cos_outer) + l.spot_cos_inner));
+    case LightKind::kArea:
+      // One-sided Lambertian emitter: radiance * area * pi.
+      return luminance(scene_->shapes[l.shape].emission) *
+             areas_[area_of_light_[light]].total_area * M_PI;
+  }
+  return 0;
 }
 
 LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
   LightSample s;
   if (lights_.empty()) return s;
-  const float scaled = u_select * static_cast<float>(lights_.size());
-  const int index = std::min(static_cast<int>(scaled), static_cast<int>(lights_.size()) - 1);
+  float selection_pmf = 0, u_rest = 0;
+  const int index = selection_.sample(u_select, &selection_pmf, &u_rest);
   const Light& light = lights_[index];
   switch (light.kind) {
     case LightKind::kDirectional:
       s.wi = light.direction;
       s.radiance = light.irradiance;
-      s.pdf = selection_pmf_;
+      s.pdf = selection_pmf;
       s.delta = true;
       break;
     case LightKind::kPoint:
@@ -166,7 +262,7 @@ LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
         s.radiance *=
             smoothstep(light.spot_cos_outer, light.spot_cos_inner, -dot(s.wi, light.spot_axis));
       }
-      s.pdf = selection_pmf_;
+      s.pdf = selection_pmf;
       s.delta = true;
       break;
     }
@@ -178,8 +274,8 @@ LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
       s.pdf = escaped_pdf(s.wi);
       break;
     case LightKind::kArea:
-      // The fraction of u_select left over after choosing the light picks the triangle.
-      s = sample_area(index, p, scaled - static_cast<float>(index), u);
+      // What is left of u_select after choosing the light picks the triangle.
+      s = sample_area(index, selection_pmf, p, u_rest, u);
       break;
   }
   s.valid = s.pdf > 0 && std::isfinite(s.pdf) && !is_black(s.radiance);
@@ -202,7 +298,8 @@ Vec3 LightTable::sample_escaping(int light, Vec2 u) const {
   }
 }
 
-LightSample LightTable::sample_area(int light, Vec3 p, float u_triangle, Vec2 u) const {
+LightSample LightTable::sample_area(int light, float selection_pmf, Vec3 p, float u_triangle,
+                                    Vec2 u) const {
   LightSample s;
   const AreaLight& area = areas_[area_of_light_[light]];
   const Shape& shape = scene_->shapes[area.shape];
@@ -222,7 +319,7 @@ LightSample LightTable::sample_area(int light, Vec3 p, float u_triangle, Vec2 u)
     s.distance = dc * local.z - std::sqrt(disc);
     q = p + s.wi * s.distance;
     n = normalize(q - shape.center);
-    s.pdf = selection_pmf_ * uniform_cone_pdf(cos_max);
+    s.pdf = selection_pmf * uniform_cone_pdf(cos_max);
   } else {
     if (!(area.total_area > 0)) return s;
     const int triangle = area.triangles.sample_discrete(u_triangle, nullptr);
@@ -241,7 +338,7 @@ LightSample LightTable::sample_area(int light, Vec3 p, float u_triangle, Vec2 u)
   const float cos_light = -dot(n, s.wi);
   if (!(cos_light > 0)) return LightSample{};
   if (shape.kind == ShapeKind::kMesh) {
-    s.pdf = selection_pmf_ * s.distance * s.distance / (area.total_area * cos_light);
+    s.pdf = selection_pmf * s.distance * s.distance / (area.total_area * cos_light);
   }
   s.radiance = shape.emission;
   return s;
@@ -255,8 +352,8 @@ Rgb LightTable::escaped_radiance(Vec3 d) const {
 
 float LightTable::escaped_pdf(Vec3 d) const {
   float sum = 0;
-  for (const int light : escaping_) sum += escaped_pdf_of(light, d);
-  return sum * selection_pmf_;
+  for (const int light : escaping_) sum += selection_.pmf(light) * escaped_pdf_of(light, d);
+  return sum;
 }
 
 Rgb LightTable::escaped_radiance_of(int light, Vec3 d) const {
@@ -300,7 +397,7 @@ Rgb LightTable::area_radiance(int shape, Vec3 n, Vec3 wi) const {
 float LightTable::area_pdf(int shape, Vec3 p, Vec3 hit, Vec3 n) const {
   const int light = light_of_shape_[shape];
   if (light < 0) return 0.0f;
-  return selection_pmf_ * area_pdf_of(areas_[area_of_light_[light]], p, hit, n);
+  return selection_.pmf(light) * area_pdf_of(areas_[area_of_light_[light]], p, hit, n);
 }
 
 float LightTable::area_pdf_of(const AreaLight& area, Vec3 p, Vec3 hit, Vec3 n) const {
