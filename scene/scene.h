@@ -119,6 +119,8 @@ enum class LightKind : uint8_t {
 
 // Lat-long environment image in linear RGB. Direction convention (y up):
 // u = (atan2(d.x, -d.z) / (2 pi) + 0.5), v = acos(d.y) / pi; pixel (0,0) is at u=0, v=0 (top).
+// The image centre looks along -z: Mitsuba 3's envmap turned 180 degrees about y
+// (docs/lights.md, which also says how lookups filter).
 struct EnvImage {
   int width = 0;
   int height = 0;

@@ -7,8 +7,9 @@ namespace snee {
 
 namespace {
 
-// Pixels with non-zero radiance get at least this fraction of the map's mean luminance as
-// sampling weight, so dim but lit directions keep a pdf that float cdfs can still resolve.
+// Pixels where the filtered radiance is non-zero get at least this fraction of the map's mean
+// luminance as sampling weight, so dim but lit directions keep a pdf that float cdfs can still
+// resolve.
 constexpr float kEnvWeightFloor = 1e-3f;
 
 bool is_escaping(LightKind kind) {
@@ -26,13 +27,37 @@ Vec3 uv_to_map_direction(Vec2 uv) {
   return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
 }
 
-// Nearest pixel: within a pixel both the radiance and the (u,v) pdf are constant.
-const Rgb& env_pixel(const EnvImage& image, Vec2 uv) {
-  const int x =
-      std::clamp(static_cast<int>(uv.x * static_cast<float>(image.width)), 0, image.width - 1);
-  const int y =
-      std::clamp(static_cast<int>(uv.y * static_cast<float>(image.height)), 0, image.height - 1);
-  return image.pixels[static_cast<size_t>(y) * image.width + x];
+// Bilinear interpolation between pixel centres, at ((x + 1/2) / width, (y + 1/2) / height):
+// u wraps around (the map is periodic in longitude), v clamps to the first and last rows
+// (within half a pixel of a pole the value is the row's own).
+Rgb env_bilinear(const EnvImage& image, Vec2 uv) {
+  const float fx = uv.x * static_cast<float>(image.width) - 0.5f;
+  const float fy = std::clamp(uv.y * static_cast<float>(image.height) - 0.5f, 0.0f,
+                              static_cast<float>(image.height - 1));
+  const float x_floor = std::floor(fx), y_floor = std::floor(fy);
+  const float tx = fx - x_floor, ty = fy - y_floor;
+  const auto wrap = [&](int x) { return ((x % image.width) + image.width) % image.width; };
+  const int x0 = wrap(static_cast<int>(x_floor)), x1 = wrap(static_cast<int>(x_floor) + 1);
+  const int y0 = static_cast<int>(y_floor), y1 = std::min(y0 + 1, image.height - 1);
+  const auto at = [&](int x, int y) {
+    return image.pixels[static_cast<size_t>(y) * image.width + x];
+  };
+  const Rgb top = at(x0, y0) * (1.0f - tx) + at(x1, y0) * tx;
+  const Rgb bottom = at(x0, y1) * (1.0f - tx) + at(x1, y1) * tx;
+  return top * (1.0f - ty) + bottom * ty;
+}
+
+// Whether the bilinear lookup can be non-zero somewhere in pixel (x, y): it blends that pixel
+// with its neighbours (u wrapping, v clamped).
+bool env_pixel_lit(const EnvImage& image, const std::vector<float>& lum, int x, int y) {
+  for (int dy = -1; dy <= 1; ++dy) {
+    const int yy = std::clamp(y + dy, 0, image.height - 1);
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int xx = (x + dx + image.width) % image.width;
+      if (lum[static_cast<size_t>(yy) * image.width + xx] > 0) return true;
+    }
+  }
+  return false;
 }
 
 // env_rotation is a rotation (the loader rejects anything else), so its inverse is the transpose.
@@ -59,7 +84,9 @@ Distribution2D env_distribution(const EnvImage& image) {
     const float sin_theta = std::sin((static_cast<float>(y) + 0.5f) * kPi / image.height);
     for (int x = 0; x < image.width; ++x) {
       const size_t i = static_cast<size_t>(y) * image.width + x;
-      weights[i] = lum[i] > 0 ? std::max(lum[i], floor) * sin_theta : 0.0f;
+      // A black pixel beside a lit one still receives bilinear radiance: it gets the floor, so
+      // that light sampling reaches every direction with radiance.
+      weights[i] = env_pixel_lit(image, lum, x, y) ? std::max(lum[i], floor) * sin_theta : 0.0f;
     }
   }
   return Distribution2D(weights, image.width, image.height);
@@ -363,7 +390,7 @@ Rgb LightTable::escaped_radiance_of(int light, Vec3 d) const {
       return dot(d, l.direction) >= cone_cos_[light] ? l.radiance : Rgb(0.0f);
     case LightKind::kEnvMap: {
       const EnvMap& env = envs_[env_of_light_[light]];
-      return l.radiance * env_pixel(*env.image, map_direction_to_uv(env.to_map.vector(d)));
+      return l.radiance * env_bilinear(*env.image, map_direction_to_uv(env.to_map.vector(d)));
     }
     default:
       return l.radiance;
