@@ -429,6 +429,16 @@ TEST_F(SceneLoaderTest, ConductorAndDiffuseTransmissionReachTheScene) {
   }
 }
 
+// The light-selection measurement scene of docs/lights.md loads, with power selection.
+TEST_F(SceneLoaderTest, KeyLightExampleLoads) {
+  const fs::path example =
+      fs::path(SNEE_PROJECT_DATA_DIR).parent_path() / "docs/examples/key-light.json";
+  const LoadedScene loaded = load_scene_file(example.string());
+  EXPECT_EQ(loaded.scene.render.light_selection, LightSelection::kPower);
+  EXPECT_EQ(loaded.scene.lights.size(), 3u);
+  EXPECT_TRUE(loaded.warnings.empty());
+}
+
 // The materials example of docs/scene-format.md loads and round-trips.
 TEST_F(SceneLoaderTest, MaterialsExampleLoads) {
   const fs::path example =
