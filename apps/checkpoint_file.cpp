@@ -124,6 +124,7 @@ CheckpointIdentity checkpoint_identity(const std::string& scene_spec, const Load
       {"tile size", options.tile_size},
       {"samples per unit", options.samples_per_unit},
       {"noise target", options.noise_target},
+      {"light selection", light_selection_name(options.light_selection)},
       {"sample clamp", options.sample_clamp},
       {"snee options", snee_options_json(options.snee)},
       {"process", std::to_string(options.shard) + " of " + std::to_string(options.shard_count)},

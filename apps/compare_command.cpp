@@ -138,6 +138,10 @@ CompareCommand::CompareCommand(CLI::App& parent)
       ->capture_default_str();
   c.add_option("--resolution", resolution_, "Image size WxH, overriding the camera's")
       ->check(resolution_validator());
+  c.add_option("--light-selection", light_selection_,
+               "Light selection of every render, the made reference's too: uniform or power "
+               "(docs/lights.md) [default: the scene's render.light_selection, else uniform]")
+      ->check(CLI::IsMember({"uniform", "power"}));
   c.add_option("--threads", threads_, "Worker threads, 0 = all")
       ->check(integer_at_least(0))
       ->capture_default_str();
@@ -170,6 +174,8 @@ int CompareCommand::run() const {
   base.threads = capped_threads(threads_);
   base.seed = seed_;
   base.max_depth = scene.render.max_depth;
+  base.light_selection = light_selection_.empty() ? scene.render.light_selection
+                                                  : *parse_light_selection(light_selection_);
 
   if (reference_.empty()) {
     RenderOptions ro = base;

@@ -29,6 +29,7 @@ class CompareCommand {
   int reference_spp_ = 1024;
   std::string reference_integrator_ = "snee";
   std::string resolution_;
+  std::string light_selection_;  // empty: the scene's
   int threads_ = 0;
   uint32_t seed_ = 1;
   std::string output_;

@@ -133,6 +133,11 @@ RenderCommand::RenderCommand(CLI::App& parent)
                "error of luminance is at most REL, up to --spp; 0 turns off a target the scene "
                "sets in render.noise_target (docs/budgets.md)")
       ->check(finite_at_least(0));
+  c.add_option("--light-selection", light_selection_,
+               "How a light sample picks its light: uniform, or power (in proportion to each "
+               "light's estimated power, docs/lights.md) [default: the scene's "
+               "render.light_selection, else uniform]")
+      ->check(CLI::IsMember({"uniform", "power"}));
   c.add_flag("-q,--quiet", quiet_, "No progress output while rendering");
   c.add_option_function<std::string>(
        "--max-memory",
@@ -263,6 +268,8 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   if (!given("--seed")) options.seed = scene.render.seed;
   if (!given("--integrator")) options.integrator = scene.render.integrator;
   if (!given("--noise-target")) options.noise_target = scene.render.noise_target;
+  options.light_selection = light_selection_.empty() ? scene.render.light_selection
+                                                     : *parse_light_selection(light_selection_);
   if (const auto size = parse_resolution(resolution_)) {
     // The field of view is kept along the camera's fov_axis; the other edge follows the new
     // aspect ratio.

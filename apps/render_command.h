@@ -49,6 +49,7 @@ class RenderCommand {
   double checkpoint_seconds_ = 0;
   std::string resume_;  // the EXR whose checkpoint state the render goes on from
   bool quiet_ = false;
+  std::string light_selection_;  // empty: the scene's
   std::string snee_probe_ = "uniform";
   std::string snee_heuristic_ = "balance";
   std::string snee_strategies_ = "tb,bt,ub,ul,mn";

@@ -73,6 +73,7 @@ ExrAttributes render_settings_attributes(const std::string& scene_spec, const Lo
       {"spp", options.spp},
       {"seed", options.seed},
       {"max_depth", options.max_depth},
+      {"light_selection", light_selection_name(options.light_selection)},
       {"resolution", {{"width", camera.width}, {"height", camera.height}}},
       {"schedule", options.schedule},
       {"queue_capacity", options.queue_capacity},

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/light_selection.h"
 #include "scene/math.h"
 
 namespace snee {
@@ -125,6 +126,8 @@ enum class LightKind : uint8_t {
 
 // Lat-long environment image in linear RGB. Direction convention (y up):
 // u = (atan2(d.x, -d.z) / (2 pi) + 0.5), v = acos(d.y) / pi; pixel (0,0) is at u=0, v=0 (top).
+// The image centre looks along -z: Mitsuba 3's envmap turned 180 degrees about y
+// (docs/lights.md, which also says how lookups filter).
 struct EnvImage {
   int width = 0;
   int height = 0;
@@ -157,6 +160,7 @@ struct RenderSettings {
   std::string integrator = "pt";
   // Adaptive sampling's relative standard error (docs/budgets.md); 0: every pixel takes spp.
   double noise_target = 0;
+  LightSelection light_selection = LightSelection::kUniform;
 };
 
 struct Scene {

@@ -504,7 +504,8 @@ class SceneReader {
   }
 
   void read_render(const JsonValue& value) {
-    const JsonObject obj = value.object({"spp", "max_depth", "seed", "integrator", "noise_target"});
+    const JsonObject obj =
+        value.object({"spp", "max_depth", "seed", "integrator", "noise_target", "light_selection"});
     RenderSettings& render = out_.scene.render;
     if (auto spp = obj.optional("spp")) render.spp = static_cast<int>(spp->integer(1, INT32_MAX));
     if (auto depth = obj.optional("max_depth")) {
@@ -516,6 +517,12 @@ class SceneReader {
     if (auto integrator = obj.optional("integrator")) render.integrator = integrator->string();
     if (auto target = obj.optional("noise_target"))
       render.noise_target = target->number(kNonNegative);
+    if (auto selection = obj.optional("light_selection")) {
+      const auto parsed =
+          selection->json().is_string() ? parse_light_selection(selection->string()) : std::nullopt;
+      if (!parsed) selection->expected("one of: uniform, power");
+      render.light_selection = *parsed;
+    }
   }
 
   json canonical_render() const {
@@ -526,6 +533,9 @@ class SceneReader {
                       {"integrator", render.integrator}};
     // Written only when set, so the scene hash of a scene without one stays what it was.
     if (render.noise_target > 0) canonical["noise_target"] = render.noise_target;
+    if (render.light_selection != LightSelection::kUniform) {
+      canonical["light_selection"] = light_selection_name(render.light_selection);
+    }
     return canonical;
   }
 

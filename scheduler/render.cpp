@@ -155,7 +155,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   tbb::task_arena arena(threads);
 
   const EmbreeScene embree(scene);
-  const LightTable lights(scene);
+  const LightTable lights(scene, options.light_selection);
   KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
                     options.snee);
   ctx.sample_clamp = options.sample_clamp;

@@ -61,6 +61,7 @@ struct RenderOptions {
   double time_seconds = 0;
   double noise_target = 0;
   SneeOptions snee;  // open choices of docs/method.md section 7 (integrator "snee")
+  LightSelection light_selection = LightSelection::kUniform;  // docs/lights.md
   // Clip each sample's RGB radiance to this before it is averaged (0: off). Biased: the image
   // no longer converges to the true one; `snee render --clamp`.
   float sample_clamp = 0.0f;

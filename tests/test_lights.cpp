@@ -1,6 +1,7 @@
 // Light sampling: every sample's pdf agrees with the pdf used for MIS (escaped_pdf, area_pdf),
 // sampled directions follow that pdf (chi-square), and irradiance estimated from the samples
-// matches closed forms or an independent estimator.
+// matches closed forms or an independent estimator, under uniform and power light selection;
+// power selection follows the documented estimates (docs/lights.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,6 +26,7 @@ constexpr double kMaxZ = 4;
 constexpr int kSamples = 1'000'000;
 // Recomputing a pdf from the sampled point takes a handful of float operations.
 constexpr float kPdfRelativeTolerance = 64 * FLT_EPSILON;
+constexpr LightSelection kSelections[] = {LightSelection::kUniform, LightSelection::kPower};
 
 Light directional_light(Vec3 direction, Rgb irradiance) {
   Light l;
@@ -135,7 +137,6 @@ using test::corner_form_factor;
 // The pdf of every sample agrees with the pdf MIS uses for the same direction or point.
 void expect_round_trip(const Scene& scene, const LightTable& lights, Vec3 p, uint64_t seed) {
   TestRng rng(seed);
-  const float selection = 1.0f / static_cast<float>(scene.lights.size());
   int valid = 0;
   for (int k = 0; k < 100000; ++k) {
     const float u_select = rng.uniform();
@@ -144,7 +145,15 @@ void expect_round_trip(const Scene& scene, const LightTable& lights, Vec3 p, uin
     ++valid;
     ASSERT_NEAR(length(s.wi), 1.0f, 4 * FLT_EPSILON);
     if (s.delta) {
-      ASSERT_EQ(s.pdf, selection);
+      // The pdf of a delta light is its selection probability.
+      bool found = false;
+      for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const LightKind kind = scene.lights[i].kind;
+        const bool delta = kind == LightKind::kDirectional || kind == LightKind::kPoint ||
+                           kind == LightKind::kSpot;
+        found = found || (delta && s.pdf == lights.selection_pmf(static_cast<int>(i)));
+      }
+      ASSERT_TRUE(found) << "delta pdf " << s.pdf << " is no delta light's selection pmf";
     } else if (std::isinf(s.distance)) {
       ASSERT_EQ(s.pdf, lights.escaped_pdf(s.wi));
       ASSERT_EQ(s.radiance, lights.escaped_radiance(s.wi));
@@ -277,7 +286,7 @@ TEST(Lights, SpotIrradianceOnAPlane) {
   const Vec3 spot(0, 0, 2), bulb(0, 3, 3);
   scene.lights.push_back(spot_light(spot, Vec3(0.0f), Rgb(5.0f), 40, 20));
   scene.lights.push_back(point_light(bulb, Rgb(2.0f)));
-  const LightTable lights(scene);
+  const LightTable lights(scene, LightSelection::kPower);
   const Vec3 n(0, 0, 1);
   for (const float x : {0.0f, 0.5f, 0.9f, 1.3f, 2.0f}) {
     const Vec3 p(x, 0, 0);
@@ -313,19 +322,21 @@ TEST(Lights, SpotWithFullConeIsAPointLight) {
   for (Scene* scene : {&with_spot, &with_point}) {
     scene->lights.push_back(cone_light(Vec3(0, 1, 0), 0.4f, Rgb(2.0f)));
   }
-  const LightTable spot(with_spot), point(with_point);
-  TestRng rng(61);
-  for (int k = 0; k < 10000; ++k) {
-    const Vec3 p = sample_uniform_sphere(rng.uniform2()) * 3.0f;
-    const float u_select = rng.uniform();
-    const Vec2 u = rng.uniform2();
-    const LightSample a = spot.sample(p, u_select, u), b = point.sample(p, u_select, u);
-    ASSERT_EQ(a.valid, b.valid);
-    ASSERT_EQ(a.wi, b.wi);
-    ASSERT_EQ(a.distance, b.distance);
-    ASSERT_EQ(a.radiance, b.radiance);
-    ASSERT_EQ(a.pdf, b.pdf);
-    ASSERT_EQ(a.delta, b.delta);
+  for (const LightSelection selection : kSelections) {
+    const LightTable spot(with_spot, selection), point(with_point, selection);
+    TestRng rng(61);
+    for (int k = 0; k < 10000; ++k) {
+      const Vec3 p = sample_uniform_sphere(rng.uniform2()) * 3.0f;
+      const float u_select = rng.uniform();
+      const Vec2 u = rng.uniform2();
+      const LightSample a = spot.sample(p, u_select, u), b = point.sample(p, u_select, u);
+      ASSERT_EQ(a.valid, b.valid);
+      ASSERT_EQ(a.wi, b.wi);
+      ASSERT_EQ(a.distance, b.distance);
+      ASSERT_EQ(a.radiance, b.radiance);
+      ASSERT_EQ(a.pdf, b.pdf);
+      ASSERT_EQ(a.delta, b.delta);
+    }
   }
 }
 
@@ -354,18 +365,24 @@ TEST(Lights, OverlappingEscapedLightsChi2) {
   const Vec3 axis = normalize(Vec3(0, 1, -1));
   scene.lights.push_back(cone_light(axis, 0.5f, Rgb(3.0f)));
   scene.lights.push_back(constant_env(Rgb(0.5f)));
-  const LightTable lights(scene);
-  TestRng rng(12);
-  const auto r = test::chi2_sphere(
-      [&]() -> std::optional<Vec3> {
-        const float u_select = rng.uniform();
-        const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
-        if (!s.valid) return std::nullopt;
-        return s.wi;
-      },
-      [&](Vec3 w) { return lights.escaped_pdf(w); }, {.axis = axis});
-  EXPECT_GT(r.p_value, kMinPValue) << r.report;
-  expect_round_trip(scene, lights, Vec3(0.0f), 13);
+  // A sphere to give the distant lights a scene radius; its power estimates then weight the
+  // mixture unevenly.
+  add_area_light(scene, sphere_emitter(Vec3(0, 0, 5), 1.0f, Rgb(1.0f)));
+  for (const LightSelection selection : kSelections) {
+    const LightTable lights(scene, selection);
+    TestRng rng(12);
+    const auto r = test::chi2_sphere(
+        [&]() -> std::optional<Vec3> {
+          const float u_select = rng.uniform();
+          const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
+          // The sphere's samples are the failure cell, of probability 1 - its selection pmf.
+          if (!s.valid || !std::isinf(s.distance)) return std::nullopt;
+          return s.wi;
+        },
+        [&](Vec3 w) { return lights.escaped_pdf(w); }, {.axis = axis});
+    EXPECT_GT(r.p_value, kMinPValue) << r.report;
+    expect_round_trip(scene, lights, Vec3(0.0f), 13);
+  }
 }
 
 TEST(Lights, ConeIrradiance) {
@@ -391,9 +408,12 @@ TEST(Lights, DirectionalIrradianceWithSelection) {
   const Vec3 n = normalize(Vec3(0, 1, 0.3f));
   scene.lights.push_back(directional_light(Vec3(0.2f, 1, 0), Rgb(4.0f)));
   scene.lights.push_back(constant_env(Rgb(0.5f)));
-  const LightTable lights(scene);
   const double expected = 4.0 * dot(n, normalize(Vec3(0.2f, 1, 0))) + 0.5 * M_PI;
-  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 16), expected, "directional + constant");
+  for (const LightSelection selection : kSelections) {
+    const LightTable lights(scene, selection);
+    expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 16), expected,
+                  light_selection_name(selection));
+  }
 }
 
 // Samples binned in map (u,v) space, two by two bins per pixel, against escaped_pdf: a bin's
@@ -461,18 +481,28 @@ TEST(Lights, EnvMapPixelProbabilities) {
   EXPECT_GT(pearson_p_value(counts, expected), kMinPValue);
 }
 
-// Integral of luminance over the sphere: exact for nearest lookup (sum of pixel radiance times
-// pixel solid angle) against light sampling; a cosine-weighted one against uniform sampling.
+// Integral of luminance over the sphere of the bilinearly filtered map, against light
+// sampling; a cosine-weighted one against uniform sampling. Interpolation in u is linear and
+// periodic, so a row's integral over u is the mean of its pixels; in v it is linear between
+// row centres (constant within half a pixel of the poles), and the integral over v of that
+// times the Jacobian 2 pi^2 sin(pi v) is summed here on a grid fine enough to be exact to 1e-9.
 TEST(Lights, EnvMapIntegrals) {
   const EnvScene env;
   const LightTable lights(env.scene);
-  double exact = 0;
+  std::vector<double> row_mean(kEnvHeight, 0.0);
   for (int y = 0; y < kEnvHeight; ++y) {
-    const double solid_angle =
-        2 * M_PI / kEnvWidth *
-        (std::cos(y * M_PI / kEnvHeight) - std::cos((y + 1) * M_PI / kEnvHeight));
     for (int x = 0; x < kEnvWidth; ++x)
-      exact += luminance(env.scale * env.pixel(x, y)) * solid_angle;
+      row_mean[y] += luminance(env.scale * env.pixel(x, y)) / kEnvWidth;
+  }
+  double exact = 0;
+  constexpr int kSteps = 1 << 20;
+  for (int k = 0; k < kSteps; ++k) {
+    const double v = (k + 0.5) / kSteps;
+    const double fy = std::clamp(v * kEnvHeight - 0.5, 0.0, kEnvHeight - 1.0);
+    const int y0 = std::min(static_cast<int>(fy), kEnvHeight - 2);
+    const double t = fy - y0;
+    const double f = (1 - t) * row_mean[y0] + t * row_mean[y0 + 1];
+    exact += 2 * M_PI * M_PI * std::sin(M_PI * v) * f / kSteps;
   }
   const Vec3 n = normalize(Vec3(0.3f, -0.4f, 1));
   TestRng rng(24);
@@ -492,6 +522,69 @@ TEST(Lights, EnvMapIntegrals) {
                           irradiance_uniform.mean(), irradiance_uniform.standard_error()),
             kMaxZ)
       << irradiance_light.mean() << " vs " << irradiance_uniform.mean();
+}
+
+// The lookup interpolates between pixel centres: at a centre it is the pixel, halfway between
+// two neighbours (across the u seam too) their mean, and between four their mean.
+TEST(Lights, EnvMapLookupIsBilinear) {
+  EnvScene env;
+  env.rotation = Transform();
+  env.scene.lights[0].env_rotation = env.rotation;
+  const LightTable lights(env.scene);
+  const auto radiance = [&](float u, float v) {
+    return lights.escaped_radiance(map_direction(u, v)) / env.scale;
+  };
+  const auto expect_rgb_near = [](Rgb a, Rgb b, const char* what) {
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-4f * (1 + b[c])) << what;
+  };
+  const float du = 1.0f / kEnvWidth, dv = 1.0f / kEnvHeight;
+  expect_rgb_near(radiance(5.5f * du, 3.5f * dv), env.pixel(5, 3), "pixel centre");
+  expect_rgb_near(radiance(6 * du, 3.5f * dv), (env.pixel(5, 3) + env.pixel(6, 3)) * 0.5f,
+                  "between two columns");
+  expect_rgb_near(radiance(6 * du, 4 * dv),
+                  (env.pixel(5, 3) + env.pixel(6, 3) + env.pixel(5, 4) + env.pixel(6, 4)) * 0.25f,
+                  "between four pixels");
+  expect_rgb_near(radiance(1e-6f, 7.5f * dv),
+                  (env.pixel(0, 7) + env.pixel(kEnvWidth - 1, 7)) * 0.5f, "across the u seam");
+  expect_rgb_near(radiance(9.5f * du, 0.2f * dv), env.pixel(9, 0), "within half a pixel of a pole");
+}
+
+// A single lit pixel on a black map: its filtered radiance reaches into the neighbours, and
+// light sampling must reach every direction that has radiance (escaped_pdf > 0 there).
+TEST(Lights, EnvMapSamplesWhereverTheFilteredRadianceIsNonZero) {
+  Scene scene;
+  EnvImage image;
+  image.width = 8;
+  image.height = 4;
+  image.pixels.assign(32, Rgb(0.0f));
+  image.pixels[1 * 8 + 7] = Rgb(5.0f);  // beside the u seam
+  scene.env_images.push_back(image);
+  Light l;
+  l.kind = LightKind::kEnvMap;
+  l.env_image = 0;
+  scene.lights.push_back(l);
+  const LightTable lights(scene);
+  TestRng rng(25);
+  int lit = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const Vec3 w = sample_uniform_sphere(rng.uniform2());
+    if (is_black(lights.escaped_radiance(w))) continue;
+    ++lit;
+    ASSERT_GT(lights.escaped_pdf(w), 0.0f) << "radiance " << luminance(lights.escaped_radiance(w));
+  }
+  EXPECT_GT(lit, 0);
+  // And the estimator over light samples agrees with one over uniform directions.
+  MeanEstimator light_sampled, uniform;
+  for (int k = 0; k < kSamples; ++k) {
+    const LightSample s = lights.sample(Vec3(0.0f), rng.uniform(), rng.uniform2());
+    light_sampled.add(s.valid ? luminance(s.radiance) / s.pdf : 0.0);
+    const Vec3 w = sample_uniform_sphere(rng.uniform2());
+    uniform.add(luminance(lights.escaped_radiance(w)) / uniform_sphere_pdf());
+  }
+  EXPECT_LT(test::z_score(light_sampled.mean(), light_sampled.standard_error(), uniform.mean(),
+                          uniform.standard_error()),
+            kMaxZ)
+      << light_sampled.mean() << " vs " << uniform.mean();
 }
 
 TEST(Lights, SquareEmitterIrradiance) {
@@ -544,18 +637,68 @@ TEST(Lights, AllKindsTogether) {
   scene.lights.push_back(point_light(Vec3(0, 2, 2), Rgb(3.0f)));
   add_area_light(scene, square_emitter(1.0f, Rgb(2.0f)));
   add_area_light(scene, sphere_emitter(Vec3(3, 0, 3), 1.0f, Rgb(5.0f)));
-  const LightTable lights(scene);
-  expect_round_trip(scene, lights, Vec3(0.0f), 41);
+  for (const LightSelection selection : kSelections) {
+    const LightTable lights(scene, selection);
+    expect_round_trip(scene, lights, Vec3(0.0f), 41);
 
-  const double directional = 1.5 * dot(n, normalize(Vec3(0.5f, 0, 1)));
-  const double cone = 4.0 * M_PI * std::pow(std::sin(0.3), 2);
-  const double point = 3.0 * (2.0 / std::sqrt(8.0)) / 8.0;
-  const double square = 2.0 * M_PI * 4 * corner_form_factor(0.5, 0.5, 1.0);
-  // The sphere's axis is 45 degrees off the normal but its cap stays above the horizon, where
-  // the cosine-weighted integral over a cap is pi sin^2(alpha) cos(axis angle).
-  const double sphere = 5.0 * M_PI * (1.0 / 18.0) * std::cos(M_PI / 4);
-  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 42),
-                directional + cone + point + square + sphere, "all kinds");
+    const double directional = 1.5 * dot(n, normalize(Vec3(0.5f, 0, 1)));
+    const double cone = 4.0 * M_PI * std::pow(std::sin(0.3), 2);
+    const double point = 3.0 * (2.0 / std::sqrt(8.0)) / 8.0;
+    const double square = 2.0 * M_PI * 4 * corner_form_factor(0.5, 0.5, 1.0);
+    // The sphere's axis is 45 degrees off the normal but its cap stays above the horizon, where
+    // the cosine-weighted integral over a cap is pi sin^2(alpha) cos(axis angle).
+    const double sphere = 5.0 * M_PI * (1.0 / 18.0) * std::cos(M_PI / 4);
+    expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 42),
+                  directional + cone + point + square + sphere, light_selection_name(selection));
+  }
+}
+
+// Power selection: probabilities in proportion to the estimates of docs/lights.md, written
+// out here. The square emitter (the only shape) gives the distant lights a scene radius of
+// half its bounding box's diagonal, sqrt(2) / 2.
+TEST(Lights, PowerSelectionFollowsTheEstimates) {
+  Scene scene;
+  scene.lights.push_back(directional_light(Vec3(0, 0, 1), Rgb(1.0f)));
+  scene.lights.push_back(cone_light(Vec3(0, 0, 1), 0.3f, Rgb(4.0f)));
+  scene.lights.push_back(constant_env(Rgb(0.1f)));
+  scene.lights.push_back(point_light(Vec3(0, 2, 2), Rgb(3.0f)));
+  scene.lights.push_back(spot_light(Vec3(0, 0, 2), Vec3(0.0f), Rgb(5.0f), 40, 20));
+  add_area_light(scene, square_emitter(1.0f, Rgb(2.0f)));
+  const double disk = M_PI * 0.5;  // pi R^2
+  const double cos_outer = std::cos(40 * M_PI / 180), cos_inner = std::cos(20 * M_PI / 180);
+  const std::vector<double> power = {
+      1.0 * disk,     4.0 * 2 * M_PI * (1 - std::cos(0.3)) * disk,        0.1 * 4 * M_PI * disk,
+      3.0 * 4 * M_PI, 5.0 * 2 * M_PI * (1 - (cos_outer + cos_inner) / 2), 2.0 * 1.0 * M_PI,
+  };
+  double total = 0;
+  for (const double p : power) total += p;
+  const LightTable lights(scene, LightSelection::kPower);
+  for (size_t i = 0; i < power.size(); ++i) {
+    EXPECT_NEAR(lights.selection_pmf(static_cast<int>(i)), power[i] / total, 1e-6) << "light " << i;
+  }
+  const LightTable uniform(scene);
+  for (size_t i = 0; i < power.size(); ++i) {
+    EXPECT_EQ(uniform.selection_pmf(static_cast<int>(i)), 1.0f / 6) << "light " << i;
+  }
+}
+
+// A light whose estimate is 0 (a distant light with no shape to give a scene radius, a black
+// light) still gets a selection probability: the mean of the others' estimates.
+TEST(Lights, PowerSelectionNeverStarvesALight) {
+  Scene scene;
+  scene.lights.push_back(directional_light(Vec3(0, 0, 1), Rgb(1.0f)));
+  scene.lights.push_back(point_light(Vec3(0, 0, 2), Rgb(1.0f)));
+  scene.lights.push_back(point_light(Vec3(0, 0, 2), Rgb(3.0f)));
+  scene.lights.push_back(point_light(Vec3(0, 0, 2), Rgb(0.0f)));
+  const LightTable lights(scene, LightSelection::kPower);
+  // Estimates 0, 4 pi, 12 pi, 0: the two zeros get the mean 8 pi; 32 pi in all.
+  EXPECT_NEAR(lights.selection_pmf(0), 0.25f, 1e-6f);
+  EXPECT_NEAR(lights.selection_pmf(1), 0.125f, 1e-6f);
+  EXPECT_NEAR(lights.selection_pmf(2), 0.375f, 1e-6f);
+  EXPECT_NEAR(lights.selection_pmf(3), 0.25f, 1e-6f);
+  const Vec3 n(0, 0, 1);
+  expect_agrees(estimate_irradiance(lights, Vec3(0.0f), n, 43, 100000), 1.0 + 4.0 / 4.0,
+                "directional + points");
 }
 
 }  // namespace

@@ -1,13 +1,15 @@
-// Direction warps and piecewise-constant distributions: normalization, sample/pdf agreement and
-// chi-square goodness of fit.
+// Direction warps, piecewise-constant distributions and the alias table: normalization, sample/pdf
+// agreement and chi-square goodness of fit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
 
+#include "kernels/alias_table.h"
 #include "kernels/sampling.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
@@ -132,6 +134,68 @@ TEST(Distribution1D, DiscreteChi2) {
     const int i = d.sample_discrete(rng.uniform(), &pmf);
     ASSERT_EQ(pmf, d.pmf(i));
     ++counts[i];
+  }
+  EXPECT_GT(pearson_p_value(counts, expected), kMinPValue);
+}
+
+TEST(AliasTable, PmfIsTheNormalizedWeights) {
+  const AliasTable t(kWeights);
+  double weight_sum = 0;
+  for (const float w : kWeights) weight_sum += w;
+  float sum = 0;
+  for (int i = 0; i < t.size(); ++i) {
+    sum += t.pmf(i);
+    EXPECT_NEAR(t.pmf(i), kWeights[i] / weight_sum, kSumTolerance) << "entry " << i;
+    EXPECT_EQ(t.pmf(i) == 0, kWeights[i] == 0) << "entry " << i;
+  }
+  EXPECT_NEAR(sum, 1.0f, kSumTolerance);
+}
+
+TEST(AliasTable, ZeroAndInvalidWeightsAreNeverSampled) {
+  // Skewed so that the big entry lends to many bins and rounding has a chance to leave a
+  // zero-weight bin over at the end.
+  const std::vector<float> w = {0, 1e-7f, -1, 5, std::numeric_limits<float>::quiet_NaN(), 0, 1};
+  const AliasTable t(w);
+  constexpr int kSteps = 1 << 20;
+  for (int k = 0; k <= kSteps; ++k) {
+    const float u = std::min(static_cast<float>(k) / kSteps, 0x1.fffffep-1f);
+    float pmf = 0, rest = -1;
+    const int i = t.sample(u, &pmf, &rest);
+    ASSERT_GT(w[i], 0.0f) << "u = " << u;
+    ASSERT_EQ(pmf, t.pmf(i));
+    ASSERT_GE(rest, 0.0f);
+    ASSERT_LT(rest, 1.0f);
+  }
+}
+
+TEST(AliasTable, SingleEntryAndAllZero) {
+  const std::vector<float> one = {3};
+  const AliasTable single(one);
+  float pmf = 0, rest = 0;
+  EXPECT_EQ(single.sample(0.37f, &pmf, &rest), 0);
+  EXPECT_EQ(pmf, 1.0f);
+  EXPECT_FLOAT_EQ(rest, 0.37f);
+
+  const std::vector<float> zeros(4, 0.0f);
+  const AliasTable uniform(zeros);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(uniform.pmf(i), 0.25f);
+}
+
+// The entry frequencies follow the weights, and the remapped number is uniform within each
+// entry: counts over (entry, tenth of [0,1)) cells against pmf / 10 each.
+TEST(AliasTable, Chi2OfEntriesAndRemappedNumber) {
+  const AliasTable t(kWeights);
+  constexpr int kTenths = 10;
+  std::vector<int64_t> counts(kWeights.size() * kTenths, 0);
+  std::vector<double> expected(counts.size());
+  for (size_t i = 0; i < counts.size(); ++i) {
+    expected[i] = kSamples * static_cast<double>(t.pmf(static_cast<int>(i / kTenths))) / kTenths;
+  }
+  TestRng rng(6);
+  for (int k = 0; k < kSamples; ++k) {
+    float rest = 0;
+    const int i = t.sample(rng.uniform(), nullptr, &rest);
+    ++counts[static_cast<size_t>(i) * kTenths + static_cast<size_t>(rest * kTenths)];
   }
   EXPECT_GT(pearson_p_value(counts, expected), kMinPValue);
 }

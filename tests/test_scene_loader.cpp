@@ -121,7 +121,7 @@ json full_scene() {
     "camera": {"position": [0, 1, 5], "look_at": [0, 0.5, 0], "up": [0, 1, 0], "fov": 35,
                "resolution": [64, 48]},
     "render": {"spp": 16, "max_depth": 100, "seed": 7, "integrator": "snee",
-               "noise_target": 0.02},
+               "noise_target": 0.02, "light_selection": "power"},
     "materials": [
       {"name": "glass", "type": "dielectric", "ior": 1.33, "roughness": 0.04},
       {"name": "white", "type": "diffuse", "albedo": [0.8, 0.7, 0.6]},
@@ -235,6 +235,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.render.max_depth, b.render.max_depth);
   EXPECT_EQ(a.render.seed, b.render.seed);
   EXPECT_EQ(a.render.integrator, b.render.integrator);
+  EXPECT_EQ(a.render.light_selection, b.render.light_selection);
   EXPECT_EQ(a.render.noise_target, b.render.noise_target);
 }
 
@@ -265,6 +266,7 @@ TEST_F(SceneLoaderTest, EveryFieldReachesTheScene) {
   EXPECT_EQ(s.render.seed, 7u);
   EXPECT_EQ(s.render.integrator, "snee");
   EXPECT_EQ(s.render.noise_target, 0.02);
+  EXPECT_EQ(s.render.light_selection, LightSelection::kPower);
 
   ASSERT_EQ(s.materials.size(), 4u);  // three named, one inline
   EXPECT_EQ(s.materials[0].kind, MaterialKind::kDielectric);
@@ -427,6 +429,16 @@ TEST_F(SceneLoaderTest, ConductorAndDiffuseTransmissionReachTheScene) {
   }
 }
 
+// The light-selection measurement scene of docs/lights.md loads, with power selection.
+TEST_F(SceneLoaderTest, KeyLightExampleLoads) {
+  const fs::path example =
+      fs::path(SNEE_PROJECT_DATA_DIR).parent_path() / "docs/examples/key-light.json";
+  const LoadedScene loaded = load_scene_file(example.string());
+  EXPECT_EQ(loaded.scene.render.light_selection, LightSelection::kPower);
+  EXPECT_EQ(loaded.scene.lights.size(), 3u);
+  EXPECT_TRUE(loaded.warnings.empty());
+}
+
 // The materials example of docs/scene-format.md loads and round-trips.
 TEST_F(SceneLoaderTest, MaterialsExampleLoads) {
   const fs::path example =
@@ -437,6 +449,15 @@ TEST_F(SceneLoaderTest, MaterialsExampleLoads) {
   EXPECT_EQ(loaded.scene.materials[3].kind, MaterialKind::kDiffuseTransmission);
   EXPECT_TRUE(loaded.warnings.empty());
   expect_round_trip(loaded, example.string());
+}
+
+TEST_F(SceneLoaderTest, BadLightSelectionNamesItsPath) {
+  json doc = full_scene();
+  doc["render"]["light_selection"] = "importance";
+  expect_error(doc, "render.light_selection",
+               "expected one of: uniform, power, got \"importance\"");
+  doc["render"]["light_selection"] = 1;
+  expect_error(doc, "render.light_selection", "expected one of: uniform, power, got 1");
 }
 
 TEST_F(SceneLoaderTest, BadConductorAndDiffuseTransmissionFieldsNameTheirPath) {

@@ -1,8 +1,9 @@
 // Whole-image checks of the snee integrator against the path tracer (docs/method.md 5.4-5.8): on
 // the paper-grid scenes where pt converges both must agree region by region; every strategy
 // alone must agree with the four-way MIS; the rough -> smooth and cone -> directional limits
-// must be continuous; and with a smooth boundary and a directional light, where pt sees no
-// transmitted light at all, snee must produce it. Tolerances are multiples of the standard
+// must be continuous; with a smooth boundary and a directional light, where pt sees no
+// transmitted light at all, snee must produce it; and light selection (uniform or by power)
+// must not change the image. Tolerances are multiples of the standard
 // error measured from the films' per-pixel variance of the mean.
 #include <gtest/gtest.h>
 
@@ -36,6 +37,23 @@ Film render_with(const Scene& scene, const std::string& integrator, int spp, uin
   options.seed = seed;
   options.snee.enabled = strategies;
   return render(scene, options).film;
+}
+
+// A 2 x 2 square emitter at height 3 above the unit sphere, emitting downward, as an area light.
+void add_panel_emitter(Scene& scene, Rgb emission) {
+  Shape emitter;
+  emitter.name = "panel";
+  emitter.kind = ShapeKind::kMesh;
+  emitter.mesh.positions = {{-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, {-1, 3, 1}};
+  emitter.mesh.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise from below: emits downward
+  emitter.emission = emission;
+  emitter.closed = false;
+  emitter.material = 0;
+  scene.shapes.push_back(emitter);
+  Light panel;
+  panel.kind = LightKind::kArea;
+  panel.shape = static_cast<int>(scene.shapes.size() - 1);
+  scene.lights.push_back(panel);
 }
 
 // The whole image within 4 combined standard errors, and every one of its 4x4 blocks within 5
@@ -188,19 +206,7 @@ TEST(SneeDeltaDelta, SmoothDirectionalIsLitOnlyBySnee) {
 TEST(SneeFiniteLights, AreaAndPointLightsMatchPathTracer) {
   Scene scene = grid_scene("sphere-cone-r0.2");
   scene.lights.clear();
-  Shape emitter;
-  emitter.name = "panel";
-  emitter.kind = ShapeKind::kMesh;
-  emitter.mesh.positions = {{-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, {-1, 3, 1}};
-  emitter.mesh.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise from below: emits downward
-  emitter.emission = Rgb(1.5f);
-  emitter.closed = false;
-  emitter.material = 0;
-  scene.shapes.push_back(emitter);
-  Light panel;
-  panel.kind = LightKind::kArea;
-  panel.shape = static_cast<int>(scene.shapes.size() - 1);
-  scene.lights.push_back(panel);
+  add_panel_emitter(scene, Rgb(1.5f));
   Light bulb;
   bulb.kind = LightKind::kPoint;
   bulb.position = {2.5f, 0.5f, 1.5f};
@@ -212,6 +218,44 @@ TEST(SneeFiniteLights, AreaAndPointLightsMatchPathTracer) {
   const std::vector<bool> object = test::sphere_mask(scene);
   ASSERT_GT(test::region_mean(snee, object).mean, 0.01) << "a black image proves nothing";
   EXPECT_GE(expect_same_image(pt, snee, "area and point lights"), 4);
+}
+
+// Light selection changes only the variance: a dim sky, a bright point light, a cone and a
+// square emitter over the rough sphere render to the same image with power-proportional and
+// uniform selection, for pt and for snee (whose strategies and MIS weights all take the
+// selection pmf).
+TEST(LightSelection, PowerMatchesUniform) {
+  Scene scene = grid_scene("sphere-cone-r0.2");
+  scene.lights.clear();
+  Light sky;
+  sky.kind = LightKind::kConstantEnv;
+  sky.radiance = Rgb(0.05f);
+  scene.lights.push_back(sky);
+  Light cone;
+  cone.kind = LightKind::kCone;
+  cone.direction = normalize(Vec3(-1, 1, 1));
+  cone.half_angle = 0.3f;
+  cone.radiance = Rgb(1.0f);
+  scene.lights.push_back(cone);
+  Light bulb;
+  bulb.kind = LightKind::kPoint;
+  bulb.position = {2.5f, 1.5f, 1.5f};
+  bulb.intensity = Rgb(20.0f);
+  scene.lights.push_back(bulb);
+  add_panel_emitter(scene, Rgb(0.5f));
+
+  for (const char* integrator : {"pt", "snee"}) {
+    RenderOptions options;
+    options.integrator = integrator;
+    options.spp = integrator == std::string("pt") ? 512 : 256;
+    options.seed = 701;
+    const Film uniform = render(scene, options).film;
+    options.light_selection = LightSelection::kPower;
+    options.seed = 702;
+    const Film power = render(scene, options).film;
+    ASSERT_GT(test::region_mean(power, test::sphere_mask(scene)).mean, 0.01);
+    EXPECT_GE(expect_same_image(uniform, power, std::string(integrator) + " uniform vs power"), 4);
+  }
 }
 
 // docs/method.md 3.10: under a directional light behind the smooth sphere, the manifold strategy

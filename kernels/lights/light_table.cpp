@@ -7,8 +7,9 @@ namespace snee {
 
 namespace {
 
-// Pixels with non-zero radiance get at least this fraction of the map's mean luminance as
-// sampling weight, so dim but lit directions keep a pdf that float cdfs can still resolve.
+// Pixels where the filtered radiance is non-zero get at least this fraction of the map's mean
+// luminance as sampling weight, so dim but lit directions keep a pdf that float cdfs can still
+// resolve.
 constexpr float kEnvWeightFloor = 1e-3f;
 
 bool is_escaping(LightKind kind) {
@@ -26,13 +27,37 @@ Vec3 uv_to_map_direction(Vec2 uv) {
   return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
 }
 
-// Nearest pixel: within a pixel both the radiance and the (u,v) pdf are constant.
-const Rgb& env_pixel(const EnvImage& image, Vec2 uv) {
-  const int x =
-      std::clamp(static_cast<int>(uv.x * static_cast<float>(image.width)), 0, image.width - 1);
-  const int y =
-      std::clamp(static_cast<int>(uv.y * static_cast<float>(image.height)), 0, image.height - 1);
-  return image.pixels[static_cast<size_t>(y) * image.width + x];
+// Bilinear interpolation between pixel centres, at ((x + 1/2) / width, (y + 1/2) / height):
+// u wraps around (the map is periodic in longitude), v clamps to the first and last rows
+// (within half a pixel of a pole the value is the row's own).
+Rgb env_bilinear(const EnvImage& image, Vec2 uv) {
+  const float fx = uv.x * static_cast<float>(image.width) - 0.5f;
+  const float fy = std::clamp(uv.y * static_cast<float>(image.height) - 0.5f, 0.0f,
+                              static_cast<float>(image.height - 1));
+  const float x_floor = std::floor(fx), y_floor = std::floor(fy);
+  const float tx = fx - x_floor, ty = fy - y_floor;
+  const auto wrap = [&](int x) { return ((x % image.width) + image.width) % image.width; };
+  const int x0 = wrap(static_cast<int>(x_floor)), x1 = wrap(static_cast<int>(x_floor) + 1);
+  const int y0 = static_cast<int>(y_floor), y1 = std::min(y0 + 1, image.height - 1);
+  const auto at = [&](int x, int y) {
+    return image.pixels[static_cast<size_t>(y) * image.width + x];
+  };
+  const Rgb top = at(x0, y0) * (1.0f - tx) + at(x1, y0) * tx;
+  const Rgb bottom = at(x0, y1) * (1.0f - tx) + at(x1, y1) * tx;
+  return top * (1.0f - ty) + bottom * ty;
+}
+
+// Whether the bilinear lookup can be non-zero somewhere in pixel (x, y): it blends that pixel
+// with its neighbours (u wrapping, v clamped).
+bool env_pixel_lit(const EnvImage& image, const std::vector<float>& lum, int x, int y) {
+  for (int dy = -1; dy <= 1; ++dy) {
+    const int yy = std::clamp(y + dy, 0, image.height - 1);
+    for (int dx = -1; dx <= 1; ++dx) {
+      const int xx = (x + dx + image.width) % image.width;
+      if (lum[static_cast<size_t>(yy) * image.width + xx] > 0) return true;
+    }
+  }
+  return false;
 }
 
 // env_rotation is a rotation (the loader rejects anything else), so its inverse is the transpose.
@@ -59,7 +84,9 @@ Distribution2D env_distribution(const EnvImage& image) {
     const float sin_theta = std::sin((static_cast<float>(y) + 0.5f) * kPi / image.height);
     for (int x = 0; x < image.width; ++x) {
       const size_t i = static_cast<size_t>(y) * image.width + x;
-      weights[i] = lum[i] > 0 ? std::max(lum[i], floor) * sin_theta : 0.0f;
+      // A black pixel beside a lit one still receives bilinear radiance: it gets the floor, so
+      // that light sampling reaches every direction with radiance.
+      weights[i] = env_pixel_lit(image, lum, x, y) ? std::max(lum[i], floor) * sin_theta : 0.0f;
     }
   }
   return Distribution2D(weights, image.width, image.height);
@@ -81,9 +108,66 @@ float visible_cone_cos(const Shape& sphere, Vec3 p) {
   return std::nextafter(cos_max, -1.0f);
 }
 
+// Half the diagonal of the box around every shape: a sphere about its centre holds the scene.
+double scene_radius(const Scene& scene) {
+  Vec3 lo(kInfinity), hi(-kInfinity);
+  for (const Shape& shape : scene.shapes) {
+    if (shape.kind == ShapeKind::kSphere) {
+      lo = vmin(lo, shape.center - Vec3(shape.radius));
+      hi = vmax(hi, shape.center + Vec3(shape.radius));
+    } else {
+      for (const Vec3& q : shape.mesh.positions) {
+        lo = vmin(lo, q);
+        hi = vmax(hi, q);
+      }
+    }
+  }
+  if (!(lo.x <= hi.x)) return 0;
+  const Vec3 d = hi - lo;
+  return 0.5 * std::sqrt(static_cast<double>(d.x) * d.x + static_cast<double>(d.y) * d.y +
+                         static_cast<double>(d.z) * d.z);
+}
+
+// Mean luminance of an environment image over the sphere of directions (pixels weighted by
+// the solid angle of their row).
+double env_mean_luminance(const EnvImage& image) {
+  double sum = 0, solid_angle = 0;
+  for (int y = 0; y < image.height; ++y) {
+    const double sin_theta = std::sin((y + 0.5) * M_PI / image.height);
+    for (int x = 0; x < image.width; ++x) {
+      const Rgb& c = image.pixels[static_cast<size_t>(y) * image.width + x];
+      sum += luminance(vmax(c, Rgb(0.0f))) * sin_theta;
+      solid_angle += sin_theta;
+    }
+  }
+  return solid_angle > 0 ? sum / solid_angle : 0.0;
+}
+
+// Selection weights from power estimates. A light whose estimate is not a positive number
+// (a black light, or a distant one in a scene without shapes) gets the mean of the others, so
+// that no light that may contribute is left with probability 0.
+std::vector<float> selection_weights(const std::vector<double>& power) {
+  double sum = 0;
+  int counted = 0;
+  for (const double p : power) {
+    if (p > 0 && std::isfinite(p)) {
+      sum += p;
+      ++counted;
+    }
+  }
+  const double fallback = counted > 0 ? sum / counted : 1.0;
+  std::vector<float> weights(power.size());
+  for (size_t i = 0; i < power.size(); ++i) {
+    const double p = power[i] > 0 && std::isfinite(power[i]) ? power[i] : fallback;
+    // Relative to the mean, so that float keeps every weight whatever the scene's units.
+    weights[i] = static_cast<float>(p / fallback);
+  }
+  return weights;
+}
+
 }  // namespace
 
-LightTable::LightTable(const Scene& scene)
+LightTable::LightTable(const Scene& scene, LightSelection selection)
     : scene_(&scene),
       lights_(scene.lights),
       cone_cos_(lights_.size(), 1.0f),
@@ -91,7 +175,6 @@ LightTable::LightTable(const Scene& scene)
       light_of_shape_(scene.shapes.size(), -1),
       env_of_light_(lights_.size(), -1) {
   if (lights_.empty()) return;
-  selection_pmf_ = 1.0f / static_cast<float>(lights_.size());
   for (size_t i = 0; i < lights_.size(); ++i) {
     const Light& light = lights_[i];
     if (is_escaping(light.kind)) escaping_.push_back(static_cast<int>(i));
@@ -140,19 +223,59 @@ LightTable::LightTable(const Scene& scene)
       }
     }
   }
+  std::vector<float> weights(lights_.size(), 1.0f);
+  if (selection == LightSelection::kPower) {
+    const double radius = scene_radius(scene);
+    std::vector<double> power(lights_.size());
+    for (size_t i = 0; i < lights_.size(); ++i) {
+      power[i] = estimated_power(static_cast<int>(i), radius);
+    }
+    weights = selection_weights(power);
+  }
+  selection_ = AliasTable(weights);
+}
+
+double LightTable::estimated_power(int light, double radius) const {
+  const Light& l = lights_[light];
+  // Distant lights: the power their radiance carries through a disk of the scene's radius
+  // facing each direction, pi R^2 times the radiance integrated over the sphere.
+  const double disk = M_PI * radius * radius;
+  switch (l.kind) {
+    case LightKind::kDirectional:
+      return luminance(l.irradiance) * disk;
+    case LightKind::kCone:
+      return luminance(l.radiance) * 2.0 * M_PI * (1.0 - cone_cos_[light]) * disk;
+    case LightKind::kConstantEnv:
+      return luminance(l.radiance) * 4.0 * M_PI * disk;
+    case LightKind::kEnvMap:
+      return luminance(l.radiance) * env_mean_luminance(*envs_[env_of_light_[light]].image) * 4.0 *
+             M_PI * disk;
+    case LightKind::kPoint:
+      return luminance(l.intensity) * 4.0 * M_PI;
+    case LightKind::kSpot:
+      // The smoothstep falloff integrates to half its band of cosines, so the solid angle is
+      // exactly 2 pi (1 - (cos_outer + cos_inner) / 2).
+      return luminance(l.intensity) * 2.0 * M_PI *
+             (1.0 - 0.5 * (static_cast<double>(l.spot_cos_outer) + l.spot_cos_inner));
+    case LightKind::kArea:
+      // One-sided Lambertian emitter: radiance * area * pi.
+      return luminance(scene_->shapes[l.shape].emission) *
+             areas_[area_of_light_[light]].total_area * M_PI;
+  }
+  return 0;
 }
 
 LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
   LightSample s;
   if (lights_.empty()) return s;
-  const float scaled = u_select * static_cast<float>(lights_.size());
-  const int index = std::min(static_cast<int>(scaled), static_cast<int>(lights_.size()) - 1);
+  float selection_pmf = 0, u_rest = 0;
+  const int index = selection_.sample(u_select, &selection_pmf, &u_rest);
   const Light& light = lights_[index];
   switch (light.kind) {
     case LightKind::kDirectional:
       s.wi = light.direction;
       s.radiance = light.irradiance;
-      s.pdf = selection_pmf_;
+      s.pdf = selection_pmf;
       s.delta = true;
       break;
     case LightKind::kPoint:
@@ -166,7 +289,7 @@ LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
         s.radiance *=
             smoothstep(light.spot_cos_outer, light.spot_cos_inner, -dot(s.wi, light.spot_axis));
       }
-      s.pdf = selection_pmf_;
+      s.pdf = selection_pmf;
       s.delta = true;
       break;
     }
@@ -178,8 +301,8 @@ LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
       s.pdf = escaped_pdf(s.wi);
       break;
     case LightKind::kArea:
-      // The fraction of u_select left over after choosing the light picks the triangle.
-      s = sample_area(index, p, scaled - static_cast<float>(index), u);
+      // What is left of u_select after choosing the light picks the triangle.
+      s = sample_area(index, selection_pmf, p, u_rest, u);
       break;
   }
   s.valid = s.pdf > 0 && std::isfinite(s.pdf) && !is_black(s.radiance);
@@ -202,7 +325,8 @@ Vec3 LightTable::sample_escaping(int light, Vec2 u) const {
   }
 }
 
-LightSample LightTable::sample_area(int light, Vec3 p, float u_triangle, Vec2 u) const {
+LightSample LightTable::sample_area(int light, float selection_pmf, Vec3 p, float u_triangle,
+                                    Vec2 u) const {
   LightSample s;
   const AreaLight& area = areas_[area_of_light_[light]];
   const Shape& shape = scene_->shapes[area.shape];
@@ -222,7 +346,7 @@ LightSample LightTable::sample_area(int light, Vec3 p, float u_triangle, Vec2 u)
     s.distance = dc * local.z - std::sqrt(disc);
     q = p + s.wi * s.distance;
     n = normalize(q - shape.center);
-    s.pdf = selection_pmf_ * uniform_cone_pdf(cos_max);
+    s.pdf = selection_pmf * uniform_cone_pdf(cos_max);
   } else {
     if (!(area.total_area > 0)) return s;
     const int triangle = area.triangles.sample_discrete(u_triangle, nullptr);
@@ -241,7 +365,7 @@ LightSample LightTable::sample_area(int light, Vec3 p, float u_triangle, Vec2 u)
   const float cos_light = -dot(n, s.wi);
   if (!(cos_light > 0)) return LightSample{};
   if (shape.kind == ShapeKind::kMesh) {
-    s.pdf = selection_pmf_ * s.distance * s.distance / (area.total_area * cos_light);
+    s.pdf = selection_pmf * s.distance * s.distance / (area.total_area * cos_light);
   }
   s.radiance = shape.emission;
   return s;
@@ -255,8 +379,8 @@ Rgb LightTable::escaped_radiance(Vec3 d) const {
 
 float LightTable::escaped_pdf(Vec3 d) const {
   float sum = 0;
-  for (const int light : escaping_) sum += escaped_pdf_of(light, d);
-  return sum * selection_pmf_;
+  for (const int light : escaping_) sum += selection_.pmf(light) * escaped_pdf_of(light, d);
+  return sum;
 }
 
 Rgb LightTable::escaped_radiance_of(int light, Vec3 d) const {
@@ -266,7 +390,7 @@ Rgb LightTable::escaped_radiance_of(int light, Vec3 d) const {
       return dot(d, l.direction) >= cone_cos_[light] ? l.radiance : Rgb(0.0f);
     case LightKind::kEnvMap: {
       const EnvMap& env = envs_[env_of_light_[light]];
-      return l.radiance * env_pixel(*env.image, map_direction_to_uv(env.to_map.vector(d)));
+      return l.radiance * env_bilinear(*env.image, map_direction_to_uv(env.to_map.vector(d)));
     }
     default:
       return l.radiance;
@@ -300,7 +424,7 @@ Rgb LightTable::area_radiance(int shape, Vec3 n, Vec3 wi) const {
 float LightTable::area_pdf(int shape, Vec3 p, Vec3 hit, Vec3 n) const {
   const int light = light_of_shape_[shape];
   if (light < 0) return 0.0f;
-  return selection_pmf_ * area_pdf_of(areas_[area_of_light_[light]], p, hit, n);
+  return selection_.pmf(light) * area_pdf_of(areas_[area_of_light_[light]], p, hit, n);
 }
 
 float LightTable::area_pdf_of(const AreaLight& area, Vec3 p, Vec3 hit, Vec3 n) const {

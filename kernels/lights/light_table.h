@@ -2,18 +2,22 @@
 // scene description (precomputing the environment-map distribution and emissive-triangle
 // tables); then read-only and shared by all threads. Dispatch is a switch on LightKind.
 //
-// Light selection is uniform over scene.lights; every pdf returned here includes the 1/N
-// selection probability, and the same function is used wherever a light pdf enters a weight.
+// A light sample first picks one of scene.lights from an alias table, uniformly or in
+// proportion to an estimate of each light's power (LightSelection; the estimates are listed in
+// docs/lights.md). Every pdf returned here includes the picked light's selection probability,
+// and the same function is used wherever a light pdf enters a weight.
 //
 // Lights seen by escaped rays (cone, constant, env map) overlap in direction, so sample() treats
 // them as one mixture: whichever of them is picked, the returned radiance is escaped_radiance(wi)
-// and the pdf escaped_pdf(wi), the sum over all of them. That keeps light sampling consistent
-// with the escaped-ray MIS weights, which only ever see the summed radiance.
+// and the pdf escaped_pdf(wi), the sum over all of them of selection probability times their
+// own pdf. That keeps light sampling consistent with the escaped-ray MIS weights, which only
+// ever see the summed radiance.
 #pragma once
 
 #include <cmath>
 #include <vector>
 
+#include "kernels/alias_table.h"
 #include "kernels/sampling.h"
 #include "scene/scene.h"
 
@@ -45,7 +49,7 @@ inline ShadowRay shadow_ray_to_light(const LightSample& s, Vec3 p, Vec3 origin) 
 
 class LightTable {
  public:
-  explicit LightTable(const Scene& scene);
+  explicit LightTable(const Scene& scene, LightSelection selection = LightSelection::kUniform);
 
   bool empty() const { return lights_.empty(); }
   // u_select picks the light, u the point/direction on it. p is the shading point.
@@ -60,6 +64,9 @@ class LightTable {
   // toward p (front side only) and the solid-angle pdf of sample() producing that point.
   Rgb area_radiance(int shape, Vec3 n, Vec3 wi) const;
   float area_pdf(int shape, Vec3 p, Vec3 hit, Vec3 n) const;
+
+  // The probability that sample() picks scene.lights[light].
+  float selection_pmf(int light) const { return selection_.pmf(light); }
 
   bool has_delta_lights() const { return has_delta_; }
   // Whether any light is seen by escaped rays (cone, constant, env map).
@@ -77,16 +84,19 @@ class LightTable {
     Transform to_world, to_map;
   };
 
+  // Emitted power (luminance) of scene.lights[light], for power-proportional selection;
+  // radius bounds the scene, which distant lights are assumed to cover.
+  double estimated_power(int light, double radius) const;
   // One light's share, without the selection probability.
   Rgb escaped_radiance_of(int light, Vec3 d) const;
   float escaped_pdf_of(int light, Vec3 d) const;
   Vec3 sample_escaping(int light, Vec2 u) const;
-  LightSample sample_area(int light, Vec3 p, float u_triangle, Vec2 u) const;
+  LightSample sample_area(int light, float selection_pmf, Vec3 p, float u_triangle, Vec2 u) const;
   float area_pdf_of(const AreaLight& area, Vec3 p, Vec3 hit, Vec3 n) const;
 
   const Scene* scene_;
   std::vector<Light> lights_;
-  float selection_pmf_ = 0;          // 1 / lights_.size()
+  AliasTable selection_;             // over lights_
   std::vector<int> escaping_;        // lights seen by escaped rays (cone, constant, env map)
   std::vector<float> cone_cos_;      // light index -> cos(half_angle) (cone lights)
   std::vector<int> area_of_light_;   // light index -> index into areas_ (or -1)
