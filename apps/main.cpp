@@ -6,6 +6,7 @@
 
 #include "apps/bench_command.h"
 #include "apps/compare_command.h"
+#include "apps/error_command.h"
 #include "apps/error_exit.h"
 #include "apps/render_command.h"
 #include "apps/scale_command.h"
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   const snee::BenchCommand bench(app);
   const snee::ScaleCommand scale(app);
   const snee::CompareCommand compare(app);
+  const snee::ErrorCommand error(app);
 
   try {
     app.parse(argc, argv);
@@ -33,6 +35,7 @@ int main(int argc, char** argv) {
     if (bench.selected()) return bench.run();
     if (scale.selected()) return scale.run();
     if (compare.selected()) return compare.run();
+    if (error.selected()) return error.run();
     return render.selected() ? render.run() : scenes.run();
   });
 }

@@ -18,6 +18,7 @@
 #include "apps/progress_bar.h"
 #include "apps/render_settings.h"
 #include "apps/resolution.h"
+#include "apps/sample_counts.h"
 #include "apps/stats_json.h"
 #include "scene/aov_selection.h"
 #include "scene/scene_loader.h"
@@ -41,15 +42,10 @@ std::string samples_summary(const RenderResult& result, int spp) {
   const Film& film = result.film;
   char text[160];
   if (film.meta.noise_target > 0 && !film.pixel_spp.empty()) {
-    double total = 0;
-    uint32_t most = 0;
-    for (const uint32_t n : film.pixel_spp) {
-      total += n;
-      most = std::max(most, n);
-    }
+    const SampleCounts counts = sample_counts(film);
     std::snprintf(text, sizeof text, "mean %.1f spp, %d to %u of %d (noise target %g%s)",
-                  total / static_cast<double>(film.pixel_spp.size()), film.meta.min_spp, most, spp,
-                  film.meta.noise_target, result.time_budget_spent ? ", time budget spent" : "");
+                  counts.mean, film.meta.min_spp, counts.most, spp, film.meta.noise_target,
+                  result.time_budget_spent ? ", time budget spent" : "");
   } else if (result.time_budget_spent) {
     std::snprintf(text, sizeof text, "%d of %d spp (time budget spent)", film.meta.min_spp, spp);
   } else {
