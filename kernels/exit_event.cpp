@@ -33,6 +33,17 @@ SneeSuffix exit_suffix(const KernelContext& ctx, Vec3 x_i, Vec3 omega_in, Vec3 x
   return s;
 }
 
+// A visibility segment from `from` to `stop_short` before `to`. A medium vertex can lie on the
+// point it connects to (within the clearance of the boundary): nothing lies between them, and
+// the empty segment still needs a unit direction, as Embree aborts on a NaN ray.
+uint32_t add_visibility_segment(ShadowQueue& shadow, Vec3 from, Vec3 to, float stop_short) {
+  const Vec3 d = to - from;
+  const float distance = length(d);
+  if (!(distance > 0)) return shadow.add_segment(from, Vec3(0, 0, 1), 0.0f, kVisibilityOnly);
+  return shadow.add_segment(from, d / distance, std::max(0.0f, distance - stop_short),
+                            kVisibilityOnly);
+}
+
 // Queues `unweighted` times the four-way weight of strategy st, chosen by V_first(x_i, x_k),
 // gated by the segments [first, first + count).
 void queue_weighted(const KernelContext& ctx, Strategy st, const SneeSuffix& s, uint32_t slot,
@@ -42,10 +53,7 @@ void queue_weighted(const KernelContext& ctx, Strategy st, const SneeSuffix& s, 
   const float w_first = static_cast<float>(w.if_first_hit);
   const float w_not_first = static_cast<float>(w.if_not_first_hit);
   // V_first as a segment from x_i toward x_k that stops just short of it.
-  const Vec3 to_k = s.x_k - s.x_i;
-  const float dist = length(to_k);
-  const uint32_t selector =
-      shadow.add_segment(s.x_i, to_k / dist, std::max(0.0f, dist - ctx.epsilon), kVisibilityOnly);
+  const uint32_t selector = add_visibility_segment(shadow, s.x_i, s.x_k, ctx.epsilon);
   shadow.add_connection({kind, slot, first, count, static_cast<int32_t>(selector),
                          unweighted * w_first, unweighted * w_not_first});
 }
@@ -177,10 +185,7 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
     s.x_k = exit.y;
     s.n_k = exit.n;
     const Vec3 inner = exit.y - ctx.epsilon * exit.n, outer = exit.y + ctx.epsilon * exit.n;
-    const Vec3 to_inner = inner - x_j;
-    const float length_inner = length(to_inner);
-    const uint32_t first =
-        shadow.add_segment(x_j, to_inner / length_inner, length_inner, kVisibilityOnly);
+    const uint32_t first = add_visibility_segment(shadow, x_j, inner, 0.0f);
     shadow.add_segment(outer, light.wi, kInfinity, kVisibilityOnly);
     if (s.x_i_medium) {
       queue_weighted(ctx, Strategy::kManifold, s, slot, unweighted, first, 2, shadow,

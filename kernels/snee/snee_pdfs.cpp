@@ -1,5 +1,7 @@
 #include "kernels/snee/snee_pdfs.h"
 
+#include <cmath>
+
 #include "kernels/bsdf/fresnel.h"
 #include "kernels/medium/free_flight.h"
 #include "kernels/medium/henyey_greenstein.h"
@@ -179,10 +181,19 @@ double mis_weight(Strategy st, const StrategyPdfs& pdfs, const SneeOptions& opti
   };
   if (!competes(st) || !(pdfs[st] > 0)) return 0.0;
   double sum = 0;
+  int infinite = 0;
   for (int i = 0; i < kStrategyCount; ++i) {
     const Strategy t = static_cast<Strategy>(i);
-    if (competes(t)) sum += heuristic(pdfs[t], options.heuristic);
+    if (!competes(t)) continue;
+    const double h = heuristic(pdfs[t], options.heuristic);
+    sum += h;
+    infinite += std::isinf(h);
   }
+  // A vertex on the point it connects to (within the ray clearance) makes a 1/r^2 pdf
+  // infinite; the weights' limit shares the sample among the infinite ones (inf / inf would
+  // be NaN and drop the whole sample).
+  if (infinite > 0)
+    return std::isinf(heuristic(pdfs[st], options.heuristic)) ? 1.0 / infinite : 0.0;
   return heuristic(pdfs[st], options.heuristic) / sum;
 }
 
