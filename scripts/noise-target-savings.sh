@@ -10,7 +10,8 @@
 # out/noise-savings/<scene>/ (EXRs and `snee error` JSON) and prints a markdown table.
 # Usage: scripts/noise-target-savings.sh [TARGET] [MAX_SPP] [REF_SPP] [RES] [DEFAULT_RES]
 #   [DEFAULT_REF_SPP] (grid defaults 0.1, 256, 4096, 48x48; builtin:default keeps its own
-#   target 0.05 and 256 spp, at 120x90 against 2048 spp)
+#   target 0.05 and 256 spp, at 120x90 against 2048 spp). SNEE_SAVINGS_SCENES="NAME ..." runs
+#   only those scenes.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -89,11 +90,21 @@ EOF
 
 echo "| scene | adaptive mean spp | adaptive relMSE (trimmed) | uniform n0 | uniform n0 relMSE, seeds 2, 3 (spread) | equal-error uniform spp n* | saving n*/mean | n* from trimmed | saving, trimmed | reference noise | uniform at n*: relMSE (/ adaptive) |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+scenes=()
 for object in sphere bunny; do
   for light in directional cone env; do
     for surface in r0.2 r0.04 smooth; do
-      run "$object-$light-$surface" "$resolution" "$reference_spp" "$target" "$max_spp"
+      scenes+=("$object-$light-$surface")
     done
   done
 done
-run default "$default_resolution" "$default_reference_spp" 0.05 256
+scenes+=(default)
+# SNEE_SAVINGS_SCENES="a b": only those rows (to redo one scene).
+[[ -n ${SNEE_SAVINGS_SCENES:-} ]] && read -r -a scenes <<<"$SNEE_SAVINGS_SCENES"
+for scene in "${scenes[@]}"; do
+  if [[ $scene == default ]]; then
+    run default "$default_resolution" "$default_reference_spp" 0.05 256
+  else
+    run "$scene" "$resolution" "$reference_spp" "$target" "$max_spp"
+  fi
+done
