@@ -23,4 +23,12 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return
 lsan_default=suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0
 export LSAN_OPTIONS=${LSAN_OPTIONS:-$lsan_default}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
-exec ctest --test-dir build-asan --output-on-failure -j"$(nproc)" "$@"
+# Open MPI's transports are plugins it loads with dlopen and never unloads cleanly after a
+# signal: LeakSanitizer reports their allocations from "<unknown module>", which no
+# suppression can name. So the MPI tests (Mpi*) run with leak checking off, and everything
+# else with it on.
+status=0
+ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -E '^Mpi' "$@" || status=$?
+ASAN_OPTIONS=$ASAN_OPTIONS:detect_leaks=0 \
+  ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -R '^Mpi' "$@" || status=$?
+exit "$status"

@@ -362,7 +362,7 @@ TEST_F(SceneLoaderTest, EveryFieldReachesTheScene) {
 // The thin-lens keys and fov_axis reach the camera and its canonical document, which holds them
 // only where a scene gives them, so older scenes keep their document and hash.
 TEST_F(SceneLoaderTest, ThinLensAndFovAxisRoundTrip) {
-  const json& plain = load(full_scene()).canonical["camera"];
+  const json plain = load(full_scene()).canonical["camera"];
   for (const char* key : {"fov_axis", "aperture_radius", "focus_distance"})
     EXPECT_FALSE(plain.contains(key)) << key;
   json doc = full_scene();
