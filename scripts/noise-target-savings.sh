@@ -90,15 +90,8 @@ EOF
 
 echo "| scene | adaptive mean spp | adaptive relMSE (trimmed) | uniform n0 | uniform n0 relMSE, seeds 2, 3 (spread) | equal-error uniform spp n* | saving n*/mean | n* from trimmed | saving, trimmed | reference noise | uniform at n*: relMSE (/ adaptive) |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
-scenes=()
-for object in sphere bunny; do
-  for light in directional cone env; do
-    for surface in r0.2 r0.04 smooth; do
-      scenes+=("$object-$light-$surface")
-    done
-  done
-done
-scenes+=(default)
+source scripts/grid-scenes.sh
+scenes=("${grid_scenes[@]}" default)
 # SNEE_SAVINGS_SCENES="a b": only those rows (to redo one scene).
 [[ -n ${SNEE_SAVINGS_SCENES:-} ]] && read -r -a scenes <<<"$SNEE_SAVINGS_SCENES"
 for scene in "${scenes[@]}"; do

@@ -14,31 +14,22 @@ seconds=${1:-4}
 reference_spp=${2:-2048}
 resolution=${3:-48x48}
 runs=${4:-3}
-for object in sphere bunny; do
-  for light in directional cone env; do
-    for surface in r0.2 r0.04 smooth; do
-      scene="$object-$light-$surface"
-      dir="out/grid/$scene"
-      for run in $(seq 1 "$runs"); do
-        reference=()
-        [[ $run -gt 1 ]] && reference=(--reference "$dir/run1/reference.exr")
-        build/apps/snee compare "builtin:$scene" --time "$seconds" --reference-spp "$reference_spp" \
-          --resolution "$resolution" --seed "$run" "${reference[@]}" -o "$dir/run$run" -q >/dev/null
-      done
-      echo "done $scene" >&2
-    done
+source scripts/grid-scenes.sh
+for scene in "${grid_scenes[@]}"; do
+  dir="out/grid/$scene"
+  for run in $(seq 1 "$runs"); do
+    reference=()
+    [[ $run -gt 1 ]] && reference=(--reference "$dir/run1/reference.exr")
+    build/apps/snee compare "builtin:$scene" --time "$seconds" --reference-spp "$reference_spp" \
+      --resolution "$resolution" --seed "$run" "${reference[@]}" -o "$dir/run$run" -q >/dev/null
   done
+  echo "done $scene" >&2
 done
 python3 scripts/grid-table.py out/grid
 sheets=()
-for object in sphere bunny; do
-  for light in directional cone env; do
-    for surface in r0.2 r0.04 smooth; do
-      scene="$object-$light-$surface"
-      oiiotool "out/grid/$scene/run1/contact-sheet.png" --resize:filter=box 300% \
-        -o "docs/images/grid/$scene.png"
-      sheets+=("out/grid/$scene/run1/contact-sheet.png")
-    done
-  done
+for scene in "${grid_scenes[@]}"; do
+  oiiotool "out/grid/$scene/run1/contact-sheet.png" --resize:filter=box 300% \
+    -o "docs/images/grid/$scene.png"
+  sheets+=("out/grid/$scene/run1/contact-sheet.png")
 done
 oiiotool "${sheets[@]}" --mosaic:pad=8 3x6 --resize:filter=box 200% -o docs/images/grid-overview.png

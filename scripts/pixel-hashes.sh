@@ -9,14 +9,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 snee=${1:-build}/apps/snee
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-scenes=(default furnace-sphere furnace-bunny furnace-sphere-null)
-for object in sphere bunny; do
-  for light in directional cone env; do
-    for surface in r0.2 r0.04 smooth; do
-      scenes+=("$object-$light-$surface")
-    done
-  done
-done
+source scripts/grid-scenes.sh
+scenes=(default furnace-sphere furnace-bunny furnace-sphere-null "${grid_scenes[@]}")
 for scene in "${scenes[@]}"; do
   for integrator in pt snee sla; do
     for schedule in local megakernel global; do
