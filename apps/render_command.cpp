@@ -173,6 +173,13 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->check(CLI::IsMember({"balance", "power"}))
       ->capture_default_str()
       ->group(snee);
+  c.add_option("--snee-light-limit", options_.snee.light_limit_degrees,
+               "SNEE runs only when some light fills a cone of at most this half-angle in "
+               "degrees as seen from the objects (delta lights 0, environments 180); otherwise "
+               "snee renders as pt. 180: always SNEE")
+      ->check(finite_in_range(0, 180))
+      ->capture_default_str()
+      ->group(snee);
   c.add_option("--snee-strategies", snee_strategies_,
                "Comma-separated strategies that share the transport SNEE handles: tb "
                "(top-to-bottom), bt (bottom-to-top), ub (BSDF-sampled exit), ul (light-sampled "
@@ -369,6 +376,8 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
 
   const std::string nonfinite = nonfinite_warning(result.stats);
   if (!nonfinite.empty()) std::fprintf(stderr, "%s\n", nonfinite.c_str());
+  const std::string engagement = snee_engagement_note(options, result.stats);
+  if (!engagement.empty()) std::fprintf(stderr, "%s\n", engagement.c_str());
   write_images(result.film, images);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
   if (result.complete) {

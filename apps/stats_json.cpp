@@ -40,6 +40,8 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
                                   const RenderResult& result) {
   const RenderStats& stats = result.stats;
   nlohmann::ordered_json snee = nlohmann::ordered_json::object();
+  snee["engaged"] = stats.snee_engaged;
+  snee["smallest_light_half_angle_degrees"] = stats.smallest_light_degrees;
   for (int c = 0; c < kSneeCounterCount; ++c)
     snee[snee_counter_name(static_cast<SneeCounter>(c))] = stats.snee[c];
 
@@ -79,7 +81,8 @@ nlohmann::ordered_json snee_options_json(const SneeOptions& snee) {
           {"distance_mix", snee.c_exponential},
           {"joint_mix", snee.c_joint},
           {"heuristic", snee.heuristic == MisHeuristic::kPower ? "power" : "balance"},
-          {"strategies", strategy_set_name(snee.enabled)}};
+          {"strategies", strategy_set_name(snee.enabled)},
+          {"light_limit_degrees", snee.light_limit_degrees}};
 }
 
 void write_json_file(const nlohmann::ordered_json& json, const std::string& path) {
@@ -103,6 +106,17 @@ std::string nonfinite_warning(const RenderStats& stats) {
                 "count as 0 in the image",
                 static_cast<unsigned long long>(stats.nonfinite_samples),
                 static_cast<unsigned long long>(stats.paths), percent);
+  return text;
+}
+
+std::string snee_engagement_note(const RenderOptions& options, const RenderStats& stats) {
+  if (options.integrator != "snee" || stats.snee_engaged) return "";
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "note: snee ran as pt: the smallest light fills a cone of %.3g degrees, more "
+                "than --snee-light-limit %.3g, and the path tracer finds such lights by itself "
+                "(docs/method.md 3.11); --snee-light-limit 180 runs SNEE anyway",
+                stats.smallest_light_degrees, options.snee.light_limit_degrees);
   return text;
 }
 

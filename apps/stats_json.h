@@ -29,6 +29,10 @@ nlohmann::ordered_json snee_options_json(const SneeOptions& snee);
 // "" when every sample was finite.
 std::string nonfinite_warning(const RenderStats& stats);
 
+// `snee` renders as `pt` when every light looks larger than --snee-light-limit: the note it
+// prints then ("note: snee ran as pt: ..."), or "" when SNEE ran or another integrator did.
+std::string snee_engagement_note(const RenderOptions& options, const RenderStats& stats);
+
 // Throws std::runtime_error naming the file if it cannot be written.
 void write_json_file(const nlohmann::ordered_json& json, const std::string& path);
 

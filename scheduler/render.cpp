@@ -14,6 +14,7 @@
 #include "kernels/first_hit_aovs.h"
 #include "kernels/lights/light_table.h"
 #include "kernels/simd/arch.h"
+#include "kernels/snee/light_extent.h"
 #include "scene/embree_scene.h"
 #include "scheduler/schedule.h"
 #include "scheduler/threading.h"
@@ -137,7 +138,13 @@ void add_workspace_stats(const UnitWorkspace& ws, KernelCounters& counters, Rend
 RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks,
                     const FilmState* resume) {
   validate(scene, options);
-  const Integrator integrator = parse_integrator(options.integrator);
+  const Integrator requested = parse_integrator(options.integrator);
+  // SNEE pays only for lights that unidirectional sampling rarely finds (docs/method.md 3.11).
+  const float smallest_light = smallest_light_half_angle_degrees(scene);
+  const bool snee_engaged =
+      requested == Integrator::kSnee && smallest_light <= options.snee.light_limit_degrees;
+  const Integrator integrator =
+      requested == Integrator::kSnee && !snee_engaged ? Integrator::kPathTracer : requested;
   const Schedule schedule = parse_schedule(options.schedule);
   const auto start = std::chrono::steady_clock::now();
   set_flush_to_zero();
@@ -181,7 +188,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   }
   if (options.aovs.any()) film_sums.keep_aovs();
   FilmMetadata meta;
-  meta.integrator = integrator_name(integrator);
+  meta.integrator = integrator_name(requested);
   meta.seed = options.seed;
   meta.scene = scene.name;
   meta.time_budget_seconds = options.time_seconds;
@@ -240,6 +247,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   stats.paths = counters.paths;
   stats.nonfinite_samples = counters.nonfinite_samples;
   stats.snee = counters.snee;
+  stats.snee_engaged = snee_engaged;
+  stats.smallest_light_degrees = smallest_light;
   stats.simd_lanes = counters.lanes;
   stats.simd_width = simd::kLanes;
   film.meta.render_seconds = stats.seconds;

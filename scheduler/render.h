@@ -112,6 +112,11 @@ struct RenderStats {
   uint64_t paths = 0;
   uint64_t nonfinite_samples = 0;  // dropped (counted, never averaged in)
   SneeCounters snee{};
+  // Integrator "snee": whether SNEE ran, i.e. some light looked no larger than
+  // SneeOptions::light_limit_degrees (the smallest light's half-angle); otherwise the render
+  // was the path tracer's.
+  bool snee_engaged = false;
+  float smallest_light_degrees = 180.0f;
   std::array<LaneCount, kBatchedKernels> simd_lanes{};  // by BatchedKernel
   size_t simd_width = 0;                                // lanes per SIMD batch in this build
   size_t path_state_bytes_per_slot = 0;

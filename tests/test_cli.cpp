@@ -230,8 +230,9 @@ TEST_F(CliTest, ThreadsAboveTheLimitAreCappedAndSigtermIsHonoured) {
 }
 
 TEST_F(CliTest, NonFiniteNumbersAreRejected) {
-  for (const char* option : {"render --snee-distance-mix", "render --snee-joint-mix",
-                             "render --checkpoint", "compare --time"}) {
+  for (const char* option :
+       {"render --snee-distance-mix", "render --snee-joint-mix", "render --snee-light-limit",
+        "render --checkpoint", "compare --time"}) {
     for (const char* value : {"nan", "inf", "-inf"}) {
       const std::string args = std::string(option) + " " + value + " --resolution 4x4";
       const Outcome run = snee(args);
@@ -430,6 +431,36 @@ TEST_F(CliTest, NonFiniteSamplesAreReported) {
   ASSERT_EQ(clean.exit_code, 0) << clean.output;
   EXPECT_FALSE(contains(clean.output, "not finite")) << clean.output;
   EXPECT_EQ(nlohmann::json::parse(read_file(path("f.json")))["nonfinite_samples"], 0);
+}
+
+// Under only wide lights snee says that it ran as pt, and --stats records it; the limit option
+// brings SNEE back and is checked like every number on the command line.
+TEST_F(CliTest, SneeSaysWhenItRanAsThePathTracer) {
+  const std::string render =
+      "render builtin:furnace-sphere --resolution 8x8 --spp 1 --quiet "
+      "--integrator snee -o f.exr --stats f.json";
+  const Outcome off = snee(render);
+  ASSERT_EQ(off.exit_code, 0) << off.output;
+  EXPECT_TRUE(contains(off.output,
+                       "note: snee ran as pt: the smallest light fills a cone of "
+                       "180 degrees, more than --snee-light-limit 15"))
+      << off.output;
+  const nlohmann::json stats = nlohmann::json::parse(read_file(path("f.json")));
+  EXPECT_EQ(stats["snee"]["engaged"], false);
+  EXPECT_EQ(stats["snee"]["smallest_light_half_angle_degrees"], 180.0);
+  EXPECT_EQ(stats["snee_options"]["light_limit_degrees"], 15.0);
+  EXPECT_EQ(stats["rays"]["probe"], 0);
+
+  const Outcome on = snee(render + " --snee-light-limit 180");
+  ASSERT_EQ(on.exit_code, 0) << on.output;
+  EXPECT_FALSE(contains(on.output, "ran as pt")) << on.output;
+  EXPECT_EQ(nlohmann::json::parse(read_file(path("f.json")))["snee"]["engaged"], true);
+
+  for (const char* bad : {"nan", "-1", "181"}) {
+    const Outcome refused = snee(render + " --snee-light-limit " + bad);
+    EXPECT_NE(refused.exit_code, 0) << bad << ": " << refused.output;
+    EXPECT_TRUE(contains(refused.output, "--snee-light-limit")) << refused.output;
+  }
 }
 
 TEST_F(CliTest, DefaultOutputIsNamedAfterTheScene) {

@@ -31,6 +31,7 @@ Film render_doc(const json& doc, const char* integrator, int spp) {
   options.spp = spp;
   options.seed = 5;
   options.integrator = integrator;
+  options.snee.light_limit_degrees = 180;  // SNEE under any light (docs/method.md 3.11)
   return render(scene, options).film;
 }
 

@@ -33,6 +33,7 @@ Film render_with(const Scene& scene, const std::string& integrator, int spp, uin
   RenderOptions options;
   options.max_depth = max_depth;
   options.integrator = integrator;
+  options.snee.light_limit_degrees = 180;  // SNEE under any light (docs/method.md 3.11)
   options.spp = spp;
   options.seed = seed;
   options.snee.enabled = strategies;
@@ -247,6 +248,7 @@ TEST(LightSelection, PowerMatchesUniform) {
   for (const char* integrator : {"pt", "snee"}) {
     RenderOptions options;
     options.integrator = integrator;
+    options.snee.light_limit_degrees = 180;  // SNEE under any light (docs/method.md 3.11)
     options.spp = integrator == std::string("pt") ? 512 : 256;
     options.seed = 701;
     const Film uniform = render(scene, options).film;

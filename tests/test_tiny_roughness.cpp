@@ -22,6 +22,7 @@ Film render_at(float roughness, const std::string& integrator, uint32_t seed, ui
   scene.materials[0].roughness = roughness;
   RenderOptions options;
   options.integrator = integrator;
+  options.snee.light_limit_degrees = 180;  // SNEE under any light (docs/method.md 3.11)
   options.spp = 64;
   options.seed = seed;
   const RenderResult result = render(scene, options);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/shape_bounds.h"
+
 namespace snee {
 
 namespace {
@@ -110,20 +112,10 @@ float visible_cone_cos(const Shape& sphere, Vec3 p) {
 
 // Half the diagonal of the box around every shape: a sphere about its centre holds the scene.
 double scene_radius(const Scene& scene) {
-  Vec3 lo(kInfinity), hi(-kInfinity);
-  for (const Shape& shape : scene.shapes) {
-    if (shape.kind == ShapeKind::kSphere) {
-      lo = vmin(lo, shape.center - Vec3(shape.radius));
-      hi = vmax(hi, shape.center + Vec3(shape.radius));
-    } else {
-      for (const Vec3& q : shape.mesh.positions) {
-        lo = vmin(lo, q);
-        hi = vmax(hi, q);
-      }
-    }
-  }
-  if (!(lo.x <= hi.x)) return 0;
-  const Vec3 d = hi - lo;
+  ShapeBounds bounds;
+  for (const Shape& shape : scene.shapes) bounds.add(shape);
+  if (bounds.empty()) return 0;
+  const Vec3 d = bounds.hi - bounds.lo;
   return 0.5 * std::sqrt(static_cast<double>(d.x) * d.x + static_cast<double>(d.y) * d.y +
                          static_cast<double>(d.z) * d.z);
 }

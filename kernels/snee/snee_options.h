@@ -50,6 +50,10 @@ enum class MisHeuristic : uint8_t {
   kPower,    // w_s = p_s^2 / sum p^2
 };
 
+// Where SNEE stops paying: measured on the paper grid's sphere under cones of 2.67 to 90
+// degrees (docs/method.md 3.11).
+inline constexpr float kDefaultLightLimitDegrees = 15.0f;
+
 struct SneeOptions {
   ProbeDirections probe = ProbeDirections::kUniformSphere;
   // Q2: probability of drawing TB's distance from the free-flight (transmittance) sampler rather
@@ -61,6 +65,11 @@ struct SneeOptions {
   float c_joint = 0.5f;
   MisHeuristic heuristic = MisHeuristic::kBalance;
   StrategySet enabled = StrategySet::all();
+  // SNEE runs only when some light looks no larger than this from the objects (the half-angle
+  // of the cone it fills, kernels/snee/light_extent.h; delta lights 0, environments 180);
+  // otherwise `snee` renders exactly as `pt`. The default is measured (docs/method.md 3.11);
+  // 180 keeps SNEE on under any light.
+  float light_limit_degrees = kDefaultLightLimitDegrees;
 };
 
 // Parses a comma-separated list of tb, bt, ub, ul (e.g. "tb,bt"); throws std::invalid_argument
