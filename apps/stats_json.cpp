@@ -42,6 +42,7 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
   nlohmann::ordered_json snee = nlohmann::ordered_json::object();
   snee["engaged"] = stats.snee_engaged;
   snee["smallest_light_half_angle_degrees"] = stats.smallest_light_degrees;
+  snee["strategies_run"] = stats.snee_engaged ? strategy_set_name(stats.snee_strategies) : "";
   for (int c = 0; c < kSneeCounterCount; ++c)
     snee[snee_counter_name(static_cast<SneeCounter>(c))] = stats.snee[c];
 

@@ -145,6 +145,13 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
       requested == Integrator::kSnee && smallest_light <= options.snee.light_limit_degrees;
   const Integrator integrator =
       requested == Integrator::kSnee && !snee_engaged ? Integrator::kPathTracer : requested;
+  // Bottom-to-top finds a light only by looking up the direction it refracts out along, which
+  // reaches a small light as rarely as the tracer's own exit does (docs/method.md 3.11). A limit
+  // of 180 keeps every strategy on.
+  SneeOptions snee_options = options.snee;
+  if (snee_options.light_limit_degrees < kWholeSkyDegrees &&
+      largest_escaped_light_half_angle_degrees(scene) <= snee_options.light_limit_degrees)
+    snee_options.enabled = snee_options.enabled.without(Strategy::kBottomToTop);
   const Schedule schedule = parse_schedule(options.schedule);
   const auto start = std::chrono::steady_clock::now();
   set_flush_to_zero();
@@ -164,7 +171,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   const EmbreeScene embree(scene);
   const LightTable lights(scene, options.light_selection);
   KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
-                    options.snee);
+                    snee_options);
   ctx.sample_clamp = options.sample_clamp;
   ctx.record_aovs = options.aovs.any();
   const auto sampling_start = std::chrono::steady_clock::now();
@@ -248,6 +255,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   stats.nonfinite_samples = counters.nonfinite_samples;
   stats.snee = counters.snee;
   stats.snee_engaged = snee_engaged;
+  stats.snee_strategies = snee_options.enabled;
   stats.smallest_light_degrees = smallest_light;
   stats.simd_lanes = counters.lanes;
   stats.simd_width = simd::kLanes;

@@ -117,6 +117,9 @@ struct RenderStats {
   // was the path tracer's.
   bool snee_engaged = false;
   float smallest_light_degrees = 180.0f;
+  // The strategies that ran: SneeOptions::enabled without bottom-to-top when no escaped light is
+  // wider than the limit.
+  StrategySet snee_strategies;
   std::array<LaneCount, kBatchedKernels> simd_lanes{};  // by BatchedKernel
   size_t simd_width = 0;                                // lanes per SIMD batch in this build
   size_t path_state_bytes_per_slot = 0;

@@ -1,6 +1,7 @@
 // SNEE runs only where some light is small (docs/method.md 3.11): the apparent size of each kind
-// of light, and that `snee` under only large lights is bitwise the path tracer's image, while
-// a limit of 180 degrees (or a small light) keeps SNEE running.
+// of light; `snee` under only large lights is bitwise the path tracer's image, while a limit of
+// 180 degrees (or a small light) keeps SNEE running; bottom-to-top runs only when an escaped
+// light is wide.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -95,6 +96,42 @@ TEST(SneeEngagement, LimitOf180OrASmallLightKeepsSneeRunning) {
   EXPECT_FALSE(test::bitwise_identical(small.film, render_with(cone, "pt", 180.0f).film));
   // A limit below the cone's half-angle turns it off there too.
   EXPECT_FALSE(render_with(cone, "snee", 2.0f).stats.snee_engaged);
+}
+
+// Bottom-to-top looks up the light in the direction it refracts out along; under only small
+// lights it is left out, which is exactly the render with the other strategies enabled.
+TEST(SneeEngagement, BottomToTopRunsOnlyWhenAnEscapedLightIsWide) {
+  const Scene cone = small_grid_scene("sphere-cone-r0.04");
+  const RenderResult by_rule = render_with(cone, "snee", kDefaultLightLimitDegrees);
+  EXPECT_FALSE(by_rule.stats.snee_strategies.contains(Strategy::kBottomToTop));
+  EXPECT_EQ(by_rule.stats.snee[static_cast<size_t>(SneeCounter::kBottomToTopConnections)], 0u);
+  RenderOptions explicit_set;
+  explicit_set.integrator = "snee";
+  explicit_set.spp = 8;
+  explicit_set.seed = 7;
+  explicit_set.snee.enabled = parse_strategy_set("tb,ub,ul,mn");
+  EXPECT_TRUE(test::bitwise_identical(by_rule.film, render(cone, explicit_set).film));
+
+  // A limit of 180 keeps every strategy, and a limit below the cone's half-angle makes it wide.
+  EXPECT_TRUE(
+      render_with(cone, "snee", 180.0f).stats.snee_strategies.contains(Strategy::kBottomToTop));
+  Scene wide_cone = cone;
+  wide_cone.lights.push_back(wide_cone.lights[0]);
+  wide_cone.lights[1].half_angle = 20.0f * kPi / 180.0f;
+  const RenderResult all = render_with(wide_cone, "snee", kDefaultLightLimitDegrees);
+  EXPECT_TRUE(all.stats.snee_strategies.contains(Strategy::kBottomToTop));
+  EXPECT_GT(all.stats.snee[static_cast<size_t>(SneeCounter::kBottomToTopPlacement)] +
+                all.stats.snee[static_cast<size_t>(SneeCounter::kBottomToTopRefraction)],
+            0u);
+  // The default scene's sky is wide and its key light small: SNEE runs with all five.
+  Scene key_and_sky = load_builtin_scene("default").scene;
+  key_and_sky.camera.width = key_and_sky.camera.height = 8;
+  RenderOptions one_sample;
+  one_sample.integrator = "snee";
+  one_sample.spp = 1;
+  const RenderResult both = render(key_and_sky, one_sample);
+  EXPECT_TRUE(both.stats.snee_engaged);
+  EXPECT_TRUE(both.stats.snee_strategies.contains(Strategy::kBottomToTop));
 }
 
 }  // namespace

@@ -9,8 +9,6 @@ namespace snee {
 
 namespace {
 
-constexpr float kWholeSky = 180.0f;
-
 // The centre of the shapes that enclose a medium: where SNEE's vertices are.
 Vec3 media_center(const Scene& scene) {
   ShapeBounds media;
@@ -27,7 +25,7 @@ float apparent_half_angle_degrees(const Shape& shape, Vec3 viewpoint) {
   box.add(shape);
   const float radius = length(box.hi - box.lo) * 0.5f;
   const float distance = length(box.center() - viewpoint);
-  if (!(distance > radius)) return kWholeSky;
+  if (!(distance > radius)) return kWholeSkyDegrees;
   return std::asin(radius / distance) * (180.0f / kPi);
 }
 
@@ -43,19 +41,29 @@ float light_half_angle_degrees(const Scene& scene, const Light& light) {
       return light.half_angle * (180.0f / kPi);
     case LightKind::kConstantEnv:
     case LightKind::kEnvMap:
-      return kWholeSky;
+      return kWholeSkyDegrees;
     case LightKind::kArea:
       return apparent_half_angle_degrees(scene.shapes[static_cast<size_t>(light.shape)],
                                          media_center(scene));
   }
-  return kWholeSky;
+  return kWholeSkyDegrees;
 }
 
 float smallest_light_half_angle_degrees(const Scene& scene) {
-  float smallest = kWholeSky;
+  float smallest = kWholeSkyDegrees;
   for (const Light& light : scene.lights)
     smallest = std::min(smallest, light_half_angle_degrees(scene, light));
   return smallest;
+}
+
+float largest_escaped_light_half_angle_degrees(const Scene& scene) {
+  float largest = 0.0f;
+  for (const Light& light : scene.lights) {
+    const bool escaped = light.kind == LightKind::kCone || light.kind == LightKind::kConstantEnv ||
+                         light.kind == LightKind::kEnvMap;
+    if (escaped) largest = std::max(largest, light_half_angle_degrees(scene, light));
+  }
+  return largest;
 }
 
 }  // namespace snee

@@ -9,6 +9,9 @@
 
 namespace snee {
 
+// The apparent size of a light that fills every direction, and the largest limit.
+inline constexpr float kWholeSkyDegrees = 180.0f;
+
 // 0 for delta lights (directional, point, spot); a cone's half-angle; 180 for constant and
 // image environments. An area light's is the half-angle of the cone from the centre of the
 // objects with a medium that holds the light's bounding sphere (180 from inside it).
@@ -16,5 +19,9 @@ float light_half_angle_degrees(const Scene& scene, const Light& light);
 
 // The smallest over scene.lights, 180 when there is none.
 float smallest_light_half_angle_degrees(const Scene& scene);
+
+// The largest over the lights that escaped rays see (cone, constant, environment image): the
+// only ones bottom-to-top can find, 0 when there is none.
+float largest_escaped_light_half_angle_degrees(const Scene& scene);
 
 }  // namespace snee

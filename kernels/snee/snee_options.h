@@ -30,6 +30,7 @@ class StrategySet {
   static constexpr StrategySet all() { return StrategySet((1u << kStrategyCount) - 1); }
   static constexpr StrategySet only(Strategy s) { return StrategySet(bit(s)); }
   constexpr StrategySet with(Strategy s) const { return StrategySet(bits_ | bit(s)); }
+  constexpr StrategySet without(Strategy s) const { return StrategySet(bits_ & ~bit(s)); }
   constexpr bool contains(Strategy s) const { return (bits_ & bit(s)) != 0; }
 
  private:
