@@ -1,7 +1,8 @@
 // Smooth shading (docs/method.md 4.9): the interpolation of vertex normals, the side rule that
 // keeps light from passing a surface the wrong way, and whole renders: an icosphere whose
 // normals are its vertex directions must render like the analytic sphere, where the same mesh
-// shaded flat visibly does not, with pt and snee, diffuse and as the grid's translucent object;
+// shaded flat visibly does not (diffuse, with pt, snee and sla), and as the grid's translucent
+// object (pt and snee);
 // and a white furnace measures the energy the side rule removes.
 #include <gtest/gtest.h>
 
@@ -255,7 +256,7 @@ TEST(SmoothShading, DiffuseIcosphereRendersLikeTheSphere) {
   Material white;
   white.kind = MaterialKind::kDiffuse;
   white.albedo = Rgb(0.8f, 0.6f, 0.4f);
-  for (const char* integrator : {"pt", "snee"})
+  for (const char* integrator : {"pt", "snee", "sla"})
     expect_smooth_matches_analytic(white, integrator, 32, 8, false, true);
 }
 
