@@ -2,8 +2,7 @@
 // keeps light from passing a surface the wrong way, and whole renders: an icosphere whose
 // normals are its vertex directions must render like the analytic sphere, where the same mesh
 // shaded flat visibly does not (diffuse, with pt, snee and sla), and as the grid's translucent
-// object (pt and snee);
-// and a white furnace measures the energy the side rule removes.
+// object (pt and snee); and a white furnace measures the energy the side rule removes.
 #include <gtest/gtest.h>
 
 #include <array>
