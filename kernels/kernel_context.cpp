@@ -121,7 +121,8 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                      !is_black(shape.emission),
                      {mat.conductor_eta, mat.conductor_k, mat.roughness},
                      {mat.albedo, mat.transmittance},
-                     Rgb(0.0f)};
+                     Rgb(0.0f),
+                     shape.smooth_shading};
     info.aov_albedo = aov_albedo(info);
     surfaces.push_back(info);
     if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;

@@ -39,6 +39,8 @@ struct SurfaceInfo {
   DiffuseTransmissionParams sheet;
   // The first-hit albedo AOV (first_hit_aovs.h), fixed per surface, so computed once here.
   Rgb aov_albedo;
+  // Shaded with the mesh's interpolated vertex normals (Shape::smooth_shading; shading_normal.h).
+  bool smooth_shading;
   // A mirror or a smooth dielectric: no light sampling, no AOV vertex.
   bool delta() const {
     return (kind == MaterialKind::kDielectric && dielectric.delta()) ||

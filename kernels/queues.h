@@ -122,13 +122,16 @@ inline constexpr uint32_t kSurfaceSampleValid = 1, kSurfaceSampleTransmission = 
 struct SurfaceResults {
   explicit SurfaceResults(size_t capacity) {
     for (AlignedArray<float>* a :
-         {&px, &py, &pz, &nx, &ny, &nz, &eta, &alpha, &wx, &wy, &wz, &cos_local, &f, &pdf,
-          &u_light0, &u_light1, &u_light2, &u_roulette})
+         {&px, &py, &pz, &nx,        &ny, &nz,  &snx,      &sny,      &snz,      &eta,       &alpha,
+          &wx, &wy, &wz, &cos_local, &f,  &pdf, &u_light0, &u_light1, &u_light2, &u_roulette})
       *a = AlignedArray<float>(padded_capacity(capacity));
     for (AlignedArray<uint32_t>* a : {&light_sampled, &flags})
       *a = AlignedArray<uint32_t>(padded_capacity(capacity));
   }
-  AlignedArray<float> px, py, pz, nx, ny, nz, eta, alpha, wx, wy, wz, cos_local, f, pdf;
+  // n: the outward geometric normal; sn: the shading normal (n itself on flat surfaces), the
+  // frame the dielectric is sampled in.
+  AlignedArray<float> px, py, pz, nx, ny, nz, snx, sny, snz, eta, alpha, wx, wy, wz, cos_local, f,
+      pdf;
   AlignedArray<float> u_light0, u_light1, u_light2, u_roulette;
   AlignedArray<uint32_t> light_sampled;  // 1 where the per-slot pass may sample a light
   AlignedArray<uint32_t> flags;

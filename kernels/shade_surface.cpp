@@ -9,6 +9,7 @@
 #include "kernels/exit_event.h"
 #include "kernels/first_hit_aovs.h"
 #include "kernels/path_ops.h"
+#include "kernels/shading_normal.h"
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/slot_chunk.h"
@@ -21,7 +22,7 @@ namespace {
 using simd::FloatBatch;
 using simd::UintBatch;
 
-// Hit point, normal and interface of every queued surface hit, by queue position; the padding
+// Hit point, normals and interface of every queued surface hit, by queue position; the padding
 // after the last entry repeats the first, so whole batches read defined values.
 void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQueue& queue,
                  SurfaceResults& out) {
@@ -38,29 +39,32 @@ void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQue
         geom, state.hit_prim[s], state.origin(s) + state.direction(s) * state.hit_t[s]);
     const SurfaceInfo& info = ctx.surfaces[geom];
     if (info.kind == MaterialKind::kDielectric) lane_interface = info.dielectric;
+    const Vec3 shading = shading_normal(ctx, geom, state.hit_prim[s], p, normal);
     out.px[k] = p.x, out.py[k] = p.y, out.pz[k] = p.z;
     out.nx[k] = normal.x, out.ny[k] = normal.y, out.nz[k] = normal.z;
+    out.snx[k] = shading.x, out.sny[k] = shading.y, out.snz[k] = shading.z;
     out.eta[k] = lane_interface.eta, out.alpha[k] = lane_interface.alpha;
     // The per-slot pass samples a light at every surface but null and delta ones.
     out.light_sampled[k] = info.kind != MaterialKind::kNull && !info.delta();
   }
   for (size_t k = n; k < (n + simd::kLanes - 1) / simd::kLanes * simd::kLanes; ++k) {
-    for (AlignedArray<float>* field :
-         {&out.px, &out.py, &out.pz, &out.nx, &out.ny, &out.nz, &out.eta, &out.alpha})
+    for (AlignedArray<float>* field : {&out.px, &out.py, &out.pz, &out.nx, &out.ny, &out.nz,
+                                       &out.snx, &out.sny, &out.snz, &out.eta, &out.alpha})
       (*field)[k] = (*field)[0];
   }
 }
 
 // The dielectric BSDF sample of one chunk of the queue at position k, in the frame of the
-// geometric normal, as the per-slot pass would draw it, and the chunk's light-sample and
-// roulette numbers.
+// shading normal (the geometric one on flat surfaces), as the per-slot pass would draw it, and
+// the chunk's light-sample and roulette numbers. The side rule of a smooth-shaded surface is the
+// per-slot pass's, which knows the surface.
 void sample_chunk(const KernelContext& ctx, const PathState& state, const simd::SlotChunk& chunk,
                   SurfaceResults& out, size_t k) {
   const auto at = [k](const AlignedArray<float>& a) {
     return FloatBatch::load_aligned(a.data() + k);
   };
   const simd::FrameBatch frame =
-      simd::FrameBatch::from_normal({at(out.nx), at(out.ny), at(out.nz)});
+      simd::FrameBatch::from_normal({at(out.snx), at(out.sny), at(out.snz)});
   const simd::Vec3Batch wo = frame.to_local(
       simd::negate({chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)}));
   const UintBatch pixel = chunk.load(state.pixel), sample = chunk.load(state.sample);
@@ -145,12 +149,16 @@ bool needs_tracking(const KernelContext& ctx, int32_t medium) {
 }
 
 // Light sample at a non-delta surface vertex, weighted against BSDF sampling; u are the first
-// three numbers of the event's kLightSample block.
-void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p, Vec3 n,
+// three numbers of the event's kLightSample block. n is the geometric normal, ns the shading
+// normal that `frame` is built on.
+void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p, Vec3 n, Vec3 ns,
                  const Frame& frame, Vec3 wo_local, const SurfaceInfo& info, ShadowQueue& shadow,
                  const ExitEvent* exit, const std::array<float, 3>& u) {
   const LightSample ls = ctx.lights->sample(p, u[0], {u[1], u[2]});
   if (!ls.valid || ls.pdf <= 0) return;
+  if (info.smooth_shading && !shading_sides_agree(-state.direction(s), ls.wi, n, ns)) {
+    return;
+  }
   const Vec3 wi_local = frame.to_local(ls.wi);
   float f = 0, bsdf_pdf = 0;
   Rgb reflectance(1.0f);
@@ -212,6 +220,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     const Vec3 p{hits.px[k], hits.py[k], hits.pz[k]};
     const uint32_t geom = state.hit_geom[s];
     const Vec3 n{hits.nx[k], hits.ny[k], hits.nz[k]};
+    const Vec3 ns{hits.snx[k], hits.sny[k], hits.snz[k]};  // n on flat surfaces
     const SurfaceInfo& info = ctx.surfaces[geom];
     const bool light_skipped = (state.flags[s] & kPathLightSkipped) != 0;
     const bool after_exit = (state.flags[s] & kPathAfterSneeExit) != 0;
@@ -261,13 +270,14 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       continue;
     }
 
-    // Every surface but the dielectric interface scatters alike from both sides.
+    // Every surface but the dielectric interface scatters alike from both sides; the geometric
+    // normal says which side the ray came from.
     const bool two_sided_flip = info.kind != MaterialKind::kDielectric && dot(d, n) > 0;
-    const Vec3 shading_n = two_sided_flip ? -n : n;
+    const Vec3 shading_n = two_sided_flip ? -ns : ns;
     const Frame frame = Frame::from_normal(shading_n);
     const Vec3 wo_local = frame.to_local(-d);
     if (!delta_bsdf && !ctx.lights->empty() && !exit.light_handled_elsewhere) {
-      surface_nee(ctx, state, s, p, n, frame, wo_local, info, q.shadow,
+      surface_nee(ctx, state, s, p, n, ns, frame, wo_local, info, q.shadow,
                   exit.snee_possible ? &exit : nullptr,
                   {hits.u_light0[k], hits.u_light1[k], hits.u_light2[k]});
     }
@@ -283,7 +293,8 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       bs = batched_sample(hits, k);
       wi = {hits.wx[k], hits.wy[k], hits.wz[k]};
     }
-    if (!bs.valid || bs.pdf <= 0 || bs.f <= 0) {
+    if (!bs.valid || bs.pdf <= 0 || bs.f <= 0 ||
+        (info.smooth_shading && !shading_sides_agree(-d, wi, n, ns))) {
       q.retire.push(s);
       continue;
     }

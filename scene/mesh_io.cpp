@@ -10,10 +10,12 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "scene/input_file.h"
 #include "scene/scene_error.h"
+#include "scene/vertex_normals.h"
 
 namespace snee {
 
@@ -28,6 +30,7 @@ std::string lowercase_extension(const std::string& path) {
 
 struct ObjCounts {
   size_t vertices = 0;
+  size_t normals = 0;  // vn lines
   size_t corners = 0;  // over all faces
 };
 
@@ -74,9 +77,10 @@ ObjCounts check_obj_text(const std::string& path, std::string_view text) {
     auto fail = [&](const std::string& what) {
       return SceneError(path + ": line " + std::to_string(line_number) + ": " + what);
     };
-    if (words[0] == "v") {
-      ++counts.vertices;
-      const std::string vertex = "vertex " + std::to_string(counts.vertices);
+    if (words[0] == "v" || words[0] == "vn") {
+      const bool normal = words[0] == "vn";
+      const std::string vertex = normal ? "normal " + std::to_string(++counts.normals)
+                                        : "vertex " + std::to_string(++counts.vertices);
       if (words.size() < 4) {
         throw fail(vertex + " has " + std::to_string(words.size() - 1) +
                    " coordinates (expected x y z)");
@@ -124,9 +128,12 @@ TriangleMesh load_obj(const std::string& path, const MemoryBudget& budget) {
   // tinyobjloader's arrays grow by doubling, so each may hold up to twice what it needs, and
   // ours follow: a position per vertex, at most three indices per corner.
   const uint64_t array_bytes = saturating_add(
-      saturating_multiply(counts.vertices, 2 * 3 * sizeof(tinyobj::real_t) + sizeof(Vec3)),
+      saturating_add(
+          saturating_multiply(counts.vertices, 2 * 3 * sizeof(tinyobj::real_t) + 2 * sizeof(Vec3)),
+          saturating_multiply(counts.normals, 2 * 3 * sizeof(tinyobj::real_t))),
+      // A corner may split its vertex (a position and a normal more).
       saturating_multiply(counts.corners, 2 * (sizeof(tinyobj::index_t) + sizeof(unsigned int)) +
-                                              3 * sizeof(uint32_t)));
+                                              3 * sizeof(uint32_t) + 2 * sizeof(Vec3)));
   if (!budget.allows(array_bytes)) {
     throw SceneError(path + ": " +
                      budget.exceeded("the arrays of " + std::to_string(counts.vertices) +
@@ -163,6 +170,34 @@ TriangleMesh load_obj(const std::string& path, const MemoryBudget& budget) {
     }
   }
 
+  // Vertex normals only where every face corner names one (v//vn, v/vt/vn); otherwise the mesh
+  // is flat-shaded.
+  const size_t normal_count = attrib.normals.size() / 3;
+  bool with_normals = normal_count > 0;
+  for (const tinyobj::shape_t& shape : shapes) {
+    for (const tinyobj::index_t& corner : shape.mesh.indices) {
+      with_normals = with_normals && corner.normal_index >= 0;
+    }
+  }
+  // A position whose corners name different normals becomes one vertex per normal: the first
+  // keeps the file's number, the others are appended.
+  std::vector<int> normal_of(with_normals ? mesh.positions.size() : 0, -1);
+  std::unordered_map<uint64_t, uint32_t> split;
+  const auto corner_vertex = [&](const tinyobj::index_t& corner) -> uint32_t {
+    const auto vertex = static_cast<uint32_t>(corner.vertex_index);
+    if (!with_normals) return vertex;
+    const int n = corner.normal_index;
+    if (normal_of[vertex] < 0) normal_of[vertex] = n;
+    if (normal_of[vertex] == n) return vertex;
+    const uint64_t key = (uint64_t{vertex} << 32) | static_cast<uint32_t>(n);
+    const auto [it, added] = split.try_emplace(key, static_cast<uint32_t>(mesh.positions.size()));
+    if (added) {
+      mesh.positions.push_back(mesh.positions[vertex]);
+      normal_of.push_back(n);
+    }
+    return it->second;
+  };
+
   size_t face_number = 0;  // across all groups, 1-based in messages like the file's own counting
   for (const tinyobj::shape_t& shape : shapes) {
     const std::vector<tinyobj::index_t>& corners = shape.mesh.indices;
@@ -180,16 +215,33 @@ TriangleMesh load_obj(const std::string& path, const MemoryBudget& budget) {
                            std::to_string(index + 1) + " but the file has " +
                            std::to_string(mesh.positions.size()) + " vertices");
         }
+        const int normal = corners[first + k].normal_index;
+        if (with_normals && static_cast<size_t>(normal) >= normal_count) {
+          throw SceneError(path + ": face " + std::to_string(face_number) + " refers to normal " +
+                           std::to_string(normal + 1) + " but the file has " +
+                           std::to_string(normal_count) + " normals");
+        }
       }
       for (size_t k = 1; k + 1 < face_size; ++k) {
-        mesh.indices.push_back(static_cast<uint32_t>(corners[first].vertex_index));
-        mesh.indices.push_back(static_cast<uint32_t>(corners[first + k].vertex_index));
-        mesh.indices.push_back(static_cast<uint32_t>(corners[first + k + 1].vertex_index));
+        mesh.indices.push_back(corner_vertex(corners[first]));
+        mesh.indices.push_back(corner_vertex(corners[first + k]));
+        mesh.indices.push_back(corner_vertex(corners[first + k + 1]));
       }
       first += face_size;
     }
   }
   if (mesh.indices.empty()) throw SceneError(path + ": the OBJ file has no faces");
+  if (with_normals) {
+    const std::vector<float>& vn = attrib.normals;
+    mesh.normals.resize(mesh.positions.size());
+    for (size_t i = 0; i < mesh.normals.size(); ++i) {
+      // A vertex no face uses is never shaded; any unit vector will do.
+      const size_t n = normal_of[i] < 0 ? 0 : static_cast<size_t>(normal_of[i]);
+      mesh.normals[i] =
+          normal_of[i] < 0 ? Vec3(0, 0, 1) : Vec3(vn[3 * n], vn[3 * n + 1], vn[3 * n + 2]);
+    }
+    normalize_vertex_normals(mesh, path);
+  }
   return mesh;
 }
 

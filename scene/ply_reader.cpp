@@ -18,6 +18,7 @@
 #include "scene/input_file.h"
 #include "scene/mesh_io.h"
 #include "scene/scene_error.h"
+#include "scene/vertex_normals.h"
 
 namespace snee {
 
@@ -307,7 +308,9 @@ class BinaryBody {
 // holds the corner indices.
 struct MeshLayout {
   size_t vertex_element = 0, face_element = 0;
-  std::vector<int> coordinate_of;  // per vertex property: 0..2 for x..z, -1 otherwise
+  // Per vertex property: 0..2 for x..z, 3..5 for the normal's nx..nz, -1 otherwise.
+  std::vector<int> coordinate_of;
+  bool normals = false;  // nx, ny and nz are all there
   size_t index_property = 0;
 };
 
@@ -325,10 +328,16 @@ MeshLayout find_layout(const std::string& path, const PlyHeader& header) {
 
   const std::vector<PlyProperty>& vertex_props = header.elements[*vertex].properties;
   layout.coordinate_of.assign(vertex_props.size(), -1);
-  bool has[3] = {false, false, false};
+  bool has[6] = {false, false, false, false, false, false};
   for (size_t i = 0; i < vertex_props.size(); ++i) {
     const std::string& name = vertex_props[i].name;
-    const int axis = name == "x" ? 0 : name == "y" ? 1 : name == "z" ? 2 : -1;
+    const int axis = name == "x"    ? 0
+                     : name == "y"  ? 1
+                     : name == "z"  ? 2
+                     : name == "nx" ? 3
+                     : name == "ny" ? 4
+                     : name == "nz" ? 5
+                                    : -1;
     if (axis < 0) continue;
     if (vertex_props[i].is_list) {
       throw SceneError(path + ": vertex property '" + name + "' is a list (expected a number)");
@@ -338,6 +347,11 @@ MeshLayout find_layout(const std::string& path, const PlyHeader& header) {
   }
   if (!has[0] || !has[1] || !has[2]) {
     throw SceneError(path + ": the vertex element lacks one of the properties x, y, z");
+  }
+  // A normal needs all three components; a partial one is ignored (flat shading).
+  layout.normals = has[3] && has[4] && has[5];
+  if (!layout.normals) {
+    for (int& axis : layout.coordinate_of) axis = axis >= 3 ? -1 : axis;
   }
 
   const std::vector<PlyProperty>& face_props = header.elements[*face].properties;
@@ -413,7 +427,7 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
   // A triangle per face; polygons grow the index array as they come, by no more than the
   // corners they add to the file.
   const uint64_t array_bytes =
-      saturating_add(saturating_multiply(vertex_count, sizeof(Vec3)),
+      saturating_add(saturating_multiply(vertex_count, (layout.normals ? 2 : 1) * sizeof(Vec3)),
                      saturating_multiply(face_count, 3 * sizeof(uint32_t)));
   if (!budget.allows(array_bytes)) {
     throw SceneError(path + ": " +
@@ -423,6 +437,7 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
   }
   TriangleMesh mesh;
   mesh.positions.resize(vertex_count);
+  if (layout.normals) mesh.normals.resize(vertex_count);
   mesh.indices.reserve(3 * face_count);
   std::vector<uint32_t> corners;
 
@@ -445,7 +460,9 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
           if (!body.read(property.type, &value) || !std::isfinite(static_cast<float>(value))) {
             throw fail(i, "expected a finite number for property '" + property.name + "'");
           }
-          mesh.positions[i][layout.coordinate_of[p]] = static_cast<float>(value);
+          const int axis = layout.coordinate_of[p];
+          (axis < 3 ? mesh.positions[i][axis] : mesh.normals[i][axis - 3]) =
+              static_cast<float>(value);
           continue;
         }
 
@@ -486,6 +503,7 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
     }
   }
   if (mesh.indices.empty()) throw SceneError(path + ": the PLY file has no faces");
+  normalize_vertex_normals(mesh, path);
   return mesh;
 }
 

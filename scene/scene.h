@@ -89,8 +89,9 @@ struct Uv {
 };
 
 // World-space triangle mesh with outward-facing winding (counter-clockwise seen from outside).
-// Normals and texture coordinates, where the file has them, are one per position; they are kept
-// for smooth shading and textures, which the kernels do not use yet (shading is flat).
+// Normals and texture coordinates, where the file has them, are one per position; normals are
+// interpolated for smooth shading (Shape::smooth_shading), texture coordinates are kept for
+// textures, which the kernels do not use yet.
 struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<uint32_t> indices;  // 3 per triangle
@@ -111,7 +112,10 @@ struct Shape {
   int interior_medium = -1;  // index into Scene::media, -1 = none
   Rgb emission{0.0f};        // radiance leaving the front side; non-zero makes it an area light
   bool closed = true;        // false if the mesh has boundary edges (SNEE needs closed)
-  std::string source;        // file it came from, for messages
+  // kMesh with normals: shade with the interpolated vertex normal (docs/method.md 4.9). The
+  // geometric normal still decides sides and media.
+  bool smooth_shading = false;
+  std::string source;  // file it came from, for messages
 };
 
 enum class LightKind : uint8_t {

@@ -371,11 +371,13 @@ class SceneReader {
   }
 
   // A glTF asset placed in the scene: {"file", "transform", "resolution", "materials",
-  // "media"}. "materials" and "media" map a glTF material's name to a snee material or medium
-  // (a defined name or an inline definition; a medium may be null for none) that replaces what
-  // the asset's material gives. Returns the asset's camera, with "resolution" applied.
+  // "media", "shading"}; "shading" applies to every primitive, as for a mesh shape. "materials" and
+  // "media" map a glTF material's name to a snee material or medium (a defined name or an inline
+  // definition; a medium may be null for none) that replaces what the asset's material gives.
+  // Returns the asset's camera, with "resolution" applied.
   std::optional<Camera> read_include(const JsonValue& value) {
-    const JsonObject obj = value.object({"file", "transform", "resolution", "materials", "media"});
+    const JsonObject obj =
+        value.object({"file", "transform", "resolution", "materials", "media", "shading"});
     const JsonValue file_value = obj.required("file");
     const ResolvedPath file = resolve(file_value.string());
     const std::optional<JsonValue> transform_value = obj.optional("transform");
@@ -445,11 +447,16 @@ class SceneReader {
       }
     }
 
+    // "smooth" is what a primitive with a NORMAL attribute gets anyway; one without stays flat.
+    const std::optional<JsonValue> shading = obj.optional("shading");
+    const bool flat = shading && shading->choice({"smooth", "flat"}) == "flat";
+    if (shading) canonical["shading"] = flat ? "flat" : "smooth";
     for (GltfPrimitive& primitive : asset.primitives) {
       Shape shape;
       shape.name = primitive.name;
       shape.source = file.file + ": " + primitive.element;
       shape.mesh = std::move(primitive.mesh);
+      shape.smooth_shading = !flat && !shape.mesh.normals.empty();
       check_mesh_coordinates(shape.mesh, value, shape.source);
       // glTF splits vertices where normals or texture coordinates differ, so whether the
       // surface is closed is asked of the positions, not of the vertex numbers.
@@ -709,10 +716,29 @@ class SceneReader {
                "' is defined");
   }
 
+  // "shading" of a mesh: "smooth" (interpolated vertex normals; the default where the mesh has
+  // them) or "flat". Recorded in the canonical form only for meshes with normals, where it
+  // makes a difference.
+  bool read_shading(const std::optional<JsonValue>& shading, const TriangleMesh& mesh,
+                    const std::string& source, json& canonical) const {
+    const bool has_normals = !mesh.normals.empty();
+    bool smooth = has_normals;
+    if (shading) {
+      smooth = shading->choice({"smooth", "flat"}) == "smooth";
+      if (smooth && !has_normals) {
+        shading->fail("\"smooth\" needs vertex normals, and " + source +
+                      " has none (expected \"flat\", or a mesh file with normals)");
+      }
+    }
+    if (has_normals) canonical["shading"] = smooth ? "smooth" : "flat";
+    return smooth;
+  }
+
   void read_shape(const JsonValue& value) {
     const std::string type = value.member("type").choice({"mesh", "sphere", "quad"});
-    const std::initializer_list<std::string_view> mesh_keys = {
-        "name", "type", "transform", "material", "medium", "emission", "file", "normalize"};
+    const std::initializer_list<std::string_view> mesh_keys = {"name",     "type",      "transform",
+                                                               "material", "medium",    "emission",
+                                                               "file",     "normalize", "shading"};
     const std::initializer_list<std::string_view> sphere_keys = {
         "name", "type", "transform", "material", "medium", "emission", "center", "radius"};
     const std::initializer_list<std::string_view> quad_keys = {
@@ -745,6 +771,8 @@ class SceneReader {
       check_mesh_coordinates(shape.mesh, value, shape.source);
       canonical["file"] = file.canonical;
       canonical["normalize"] = normalize;
+      shape.smooth_shading =
+          read_shading(obj.optional("shading"), shape.mesh, shape.source, canonical);
     } else if (type == "sphere") {
       if (transform_value && !is_similarity(transform)) {
         transform_value->fail(
@@ -791,7 +819,9 @@ class SceneReader {
       // A mirroring transform turns the winding inside out; undo that so the front side stays
       // the authored one, then make closed meshes face outward whatever the file said.
       if (transform.determinant() < 0) flip_winding(shape.mesh);
-      edges = count_edges(shape.mesh);
+      // Vertices split where their normals differ (mesh_io.cpp) still join their triangles.
+      edges = shape.mesh.normals.empty() ? count_edges(shape.mesh)
+                                         : count_edges(welded_by_position(shape.mesh));
       shape.closed = edges.boundary == 0;
       if (shape.closed && signed_volume(shape.mesh) < 0) flip_winding(shape.mesh);
     }

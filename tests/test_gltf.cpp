@@ -364,6 +364,23 @@ TEST_F(GltfTest, MediumOverrideNullRemovesTheVolume) {
   EXPECT_EQ(scene.shapes[0].interior_medium, -1);
 }
 
+// The cube has NORMAL: smooth unless the include says flat; another value is an error.
+TEST_F(GltfTest, ShadingOfAnIncludeIsSmoothWithNormalsOrFlat) {
+  write_gltf(embedded());
+  const auto shading_of = [&](const json& include) {
+    const json doc = {{"include", {include}}};
+    return load_scene(write("scene.json", doc.dump())).scene.shapes.at(0).smooth_shading;
+  };
+  EXPECT_TRUE(shading_of({{"file", "cube.gltf"}}));
+  EXPECT_TRUE(shading_of({{"file", "cube.gltf"}, {"shading", "smooth"}}));
+  EXPECT_FALSE(shading_of({{"file", "cube.gltf"}, {"shading", "flat"}}));
+  const json doc = {{"include", {{{"file", "cube.gltf"}, {"shading", "gouraud"}}}}};
+  const std::string path = write("scene.json", doc.dump());
+  const std::string message = test::scene_error_of([&] { load_scene(path); });
+  EXPECT_NE(message.find("include[0].shading:"), std::string::npos) << message;
+  EXPECT_NE(message.find("smooth, flat"), std::string::npos) << message;
+}
+
 TEST_F(GltfTest, VolumeScatterGivesScatteringAndAnisotropy) {
   json doc = embedded();
   doc["materials"][0]["extensions"]["KHR_materials_volume_scatter"] = {

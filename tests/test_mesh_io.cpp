@@ -117,6 +117,74 @@ TEST_F(MeshIoTest, AsciiPlyIgnoresOtherPropertiesAndElements) {
   EXPECT_EQ(m.indices, expected);
 }
 
+// Corners that name different normals for one position split it; normals come out unit.
+TEST_F(MeshIoTest, ObjVertexNormalsSplitWhereCornersDisagree) {
+  const std::string path = write("normals.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                 "vn 0 0 1\nvn 0 3 4\n"
+                                 "f 1//1 2//1 3//1\nf 1/1/2 3/1/2 4/1/2\nvt 0 0\n");
+  const TriangleMesh m = load_mesh(path);
+  ASSERT_EQ(m.positions.size(), 6u);
+  const std::vector<uint32_t> expected = {0, 1, 2, 4, 5, 3};
+  EXPECT_EQ(m.indices, expected);
+  EXPECT_EQ(m.positions[4], m.positions[0]);
+  EXPECT_EQ(m.positions[5], m.positions[2]);
+  ASSERT_EQ(m.normals.size(), 6u);
+  EXPECT_EQ(m.normals[0], Vec3(0, 0, 1));
+  for (const uint32_t i : {3u, 4u, 5u}) {
+    EXPECT_NEAR(m.normals[i].y, 0.6f, 1e-6f) << i;
+    EXPECT_NEAR(m.normals[i].z, 0.8f, 1e-6f) << i;
+  }
+  // A face without normals makes the whole mesh flat.
+  const TriangleMesh partial = load_mesh(write("partial.obj",
+                                               "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n"
+                                               "f 1//1 2//1 3//1\nf 1 3 4\n"));
+  EXPECT_TRUE(partial.normals.empty());
+  EXPECT_EQ(partial.positions.size(), 4u);
+}
+
+TEST_F(MeshIoTest, BadVertexNormalsNameFileAndVertex) {
+  const std::string zero =
+      write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n");
+  std::string message = scene_error_of([&] { load_mesh(zero); });
+  EXPECT_NE(message.find(zero), std::string::npos) << message;
+  EXPECT_NE(message.find("normal of vertex 1 is zero"), std::string::npos) << message;
+  const std::string nan =
+      write("nan.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 nan 1\nf 1//1 2//1 3//1\n");
+  message = scene_error_of([&] { load_mesh(nan); });
+  EXPECT_NE(message.find("line 4: normal 1 has a coordinate 'nan'"), std::string::npos) << message;
+  const std::string range =
+      write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n");
+  message = scene_error_of([&] { load_mesh(range); });
+  EXPECT_NE(message.find("face 1 refers to normal 2 but the file has 1 normals"), std::string::npos)
+      << message;
+}
+
+TEST_F(MeshIoTest, PlyVertexNormalsAreRead) {
+  const std::string path = write("normals.ply",
+                                 "ply\nformat ascii 1.0\nelement vertex 3\n"
+                                 "property float x\nproperty float y\nproperty float z\n"
+                                 "property float nx\nproperty float ny\nproperty float nz\n"
+                                 "element face 1\nproperty list uchar int vertex_indices\n"
+                                 "end_header\n"
+                                 "0 0 0 0 0 2\n1 0 0 0 3 4\n0 1 0 1 0 0\n3 0 1 2\n");
+  const TriangleMesh m = load_ply(path);
+  ASSERT_EQ(m.normals.size(), 3u);
+  EXPECT_EQ(m.normals[0], Vec3(0, 0, 1));
+  EXPECT_NEAR(m.normals[1].y, 0.6f, 1e-6f);
+  EXPECT_EQ(m.normals[2], Vec3(1, 0, 0));
+  // Only nx and ny: no normals.
+  const TriangleMesh partial = load_ply(write("partial.ply",
+                                              "ply\nformat ascii 1.0\nelement vertex 3\n"
+                                              "property float x\nproperty float y\n"
+                                              "property float z\nproperty float nx\n"
+                                              "property float ny\nelement face 1\n"
+                                              "property list uchar int vertex_indices\n"
+                                              "end_header\n"
+                                              "0 0 0 0 0\n1 0 0 0 3\n0 1 0 1 0\n3 0 1 2\n"));
+  EXPECT_TRUE(partial.normals.empty());
+}
+
 TEST_F(MeshIoTest, AsciiPlyErrorsNameFileLineAndElement) {
   const std::string header =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"

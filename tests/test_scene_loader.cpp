@@ -1146,5 +1146,48 @@ TEST(BuiltinScenes, ProceduralSkyIsLowFrequencyAndBrightAbove) {
   EXPECT_LT(brightest, 5.0f);
 }
 
+// A cube whose faces each name their own normal: its corners split into 24 vertices, it still
+// counts as closed, and "shading" chooses between its normals and its triangles'.
+TEST_F(SceneLoaderTest, ShadingIsSmoothWhereTheMeshHasNormals) {
+  std::ofstream(dir_ / "meshes" / "normals_cube.obj")
+      << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"
+         "vn 0 0 -1\nvn 0 0 1\nvn 0 -1 0\nvn 0 1 0\nvn -1 0 0\nvn 1 0 0\n"
+         "f 1//1 3//1 4//1 2//1\nf 5//2 6//2 8//2 7//2\nf 1//3 2//3 6//3 5//3\n"
+         "f 3//4 7//4 8//4 4//4\nf 1//5 5//5 7//5 3//5\nf 2//6 4//6 8//6 6//6\n";
+  json doc = full_scene();
+  doc["shapes"][0]["file"] = "meshes/normals_cube.obj";
+  const LoadedScene smooth = load(doc);
+  const Shape& cube = smooth.scene.shapes[0];
+  EXPECT_TRUE(cube.smooth_shading);
+  EXPECT_TRUE(cube.closed);
+  EXPECT_EQ(cube.mesh.positions.size(), 24u);
+  EXPECT_EQ(smooth.canonical["shapes"][0]["shading"], "smooth");
+  // The bunny has no normals: flat, and nothing in the canonical form.
+  EXPECT_FALSE(smooth.scene.shapes[1].smooth_shading);
+  EXPECT_FALSE(smooth.canonical["shapes"][1].contains("shading"));
+
+  doc["shapes"][0]["shading"] = "flat";
+  const LoadedScene flat = load(doc);
+  EXPECT_FALSE(flat.scene.shapes[0].smooth_shading);
+  EXPECT_EQ(flat.canonical["shapes"][0]["shading"], "flat");
+  EXPECT_FALSE(
+      load_scene_json(flat.canonical, "canonical", dir_.string()).scene.shapes[0].smooth_shading);
+}
+
+TEST_F(SceneLoaderTest, ShadingErrorsNameThePathAndTheChoices) {
+  json doc = full_scene();
+  doc["shapes"][0]["shading"] = "phong";
+  expect_error(doc, "shapes[0].shading", "smooth, flat");
+  doc["shapes"][0]["shading"] = true;
+  expect_error(doc, "shapes[0].shading", "smooth, flat");
+  // cube.obj has no normals to be smooth with.
+  doc["shapes"][0]["shading"] = "smooth";
+  expect_error(doc, "shapes[0].shading", "needs vertex normals");
+  // Spheres and quads have no such key.
+  doc["shapes"][0].erase("shading");
+  doc["shapes"][2]["shading"] = "flat";
+  expect_error(doc, "shapes[2].shading", "unknown key");
+}
+
 }  // namespace
 }  // namespace snee
