@@ -6,6 +6,7 @@
 // The image is bitwise the one `snee render` makes.
 #include <mpi.h>
 
+#include <cstdio>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -14,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/error_exit.h"
+#include "apps/mpi/claim_latency.h"
 #include "apps/mpi/join_shards.h"
 #include "apps/mpi/mpi_wait.h"
 #include "apps/mpi/stop_together.h"
@@ -69,12 +71,30 @@ int main(int argc, char** argv) {
                        "static, and make it the default (docs/resume.md)")
           ->check(CLI::IsMember({"static", "dynamic"}))
           ->default_str("dynamic");
+  CLI::App* latency = app.add_subcommand(
+      "claim-latency",
+      "Time the tile claims of --split dynamic (MPI_Fetch_and_op to rank 0) from every other "
+      "rank while rank 0 computes (docs/performance.md)");
+  int claims = 2000;
+  double busy_seconds = 2;
+  latency->add_option("--claims", claims, "Claims each rank makes")
+      ->check(snee::integer_at_least(1))
+      ->capture_default_str();
+  latency->add_option("--busy-seconds", busy_seconds, "Seconds rank 0 computes meanwhile")
+      ->check(snee::finite_at_least(0))
+      ->capture_default_str();
   int code = 0;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // Every rank parses the same arguments; only rank 0 prints help or the error.
     code = rank == 0 ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : e.get_exit_code());
+    MPI_Finalize();
+    return code;
+  }
+  if (latency->parsed()) {
+    code = ranks > 1 ? snee::measure_claim_latency(MPI_COMM_WORLD, claims, busy_seconds) : 2;
+    if (code != 0 && rank == 0) std::fprintf(stderr, "error: claim-latency needs two processes\n");
     MPI_Finalize();
     return code;
   }
