@@ -86,6 +86,9 @@ RenderCommand::RenderCommand(CLI::App& parent)
                    : std::string("the output must end in ") + kOutputExtensions + ": " + path;
       });
   c.add_option("--stats", stats_, "Also write render statistics as JSON to this file");
+  c.add_flag("--stats-tiles", stats_tiles_,
+             "With --stats: also each tile's seconds of thread time (tile_seconds, raster order), "
+             "the cost map load-balance studies start from (docs/performance.md)");
   c.add_option("--resolution", resolution_,
                "Image size WxH, overriding the camera's (keeps its field of view along fov_axis)")
       ->check(resolution_validator());
@@ -253,8 +256,16 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
       snee_heuristic_ == "power" ? MisHeuristic::kPower : MisHeuristic::kBalance;
   options.snee.enabled = parse_strategy_set(snee_strategies_);
   options.threads = capped_threads(options.threads);
-  options.shard = distribution.shard;
-  options.shard_count = distribution.shard_count;
+  const bool claims_tiles = static_cast<bool>(distribution.tile_source);
+  if (!claims_tiles) {
+    options.shard = distribution.shard;
+    options.shard_count = distribution.shard_count;
+  }
+  // A state holds a fixed set of tiles, and which tiles a process claims is known only at the end.
+  if (claims_tiles && (checkpoint_seconds_ > 0 || !resume_.empty()))
+    throw std::invalid_argument(
+        "--checkpoint and --resume need the static split (--split static): with tiles claimed "
+        "while rendering, no process knows its tiles in advance");
   // Each process would read its own clock and stop at its own round.
   if (distribution.shard_count > 1 && options.time_seconds > 0)
     throw std::invalid_argument(
@@ -310,7 +321,9 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   // The images are what was asked for; the state (a longer name beside the EXR) only makes a
   // stop resumable, so a render that cannot keep it still runs, warned.
   try {
-    check_destination(state_file, checkpoint_bytes_bound(scene.camera.width, scene.camera.height));
+    if (!claims_tiles)
+      check_destination(state_file,
+                        checkpoint_bytes_bound(scene.camera.width, scene.camera.height));
   } catch (const std::exception& e) {
     std::fprintf(stderr,
                  "warning: the render's state cannot be kept, a stop cannot be resumed: %s\n",
@@ -337,9 +350,12 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
     };
   }
   // Also set without --checkpoint: a stopped render keeps its final state (RenderResult).
-  hooks.checkpoint_state = [&](const FilmState& state) {
-    checkpoint_or_warn([&] { write_checkpoint(state_file, identity, state); });
-  };
+  if (!claims_tiles) {
+    hooks.checkpoint_state = [&](const FilmState& state) {
+      checkpoint_or_warn([&] { write_checkpoint(state_file, identity, state); });
+    };
+  }
+  hooks.tile_source = distribution.tile_source;
   const InterruptRequest interrupt;
   hooks.stop_requested = [&] {
     const bool here = interrupt.requested();
@@ -361,7 +377,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   // Every process keeps its own state, before the join. A complete render keeps it only when
   // asked to checkpoint or resumed (so that it can be taken further, to a larger spp); else a
   // state left by an earlier stopped render of this EXR is gone with the EXR it belonged to.
-  if (!result.complete || checkpoint_seconds_ > 0 || resumed) {
+  if (!claims_tiles && (!result.complete || checkpoint_seconds_ > 0 || resumed)) {
     try {
       write_checkpoint(state_file, identity, *result.state);
     } catch (const std::exception& e) {
@@ -369,6 +385,10 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
                    e.what());
     }
   } else {
+    if (!result.complete)
+      std::fprintf(stderr,
+                   "warning: processes that claim tiles while rendering keep no state, this stop "
+                   "cannot be resumed (--split static, or --checkpoint, keeps one)\n");
     std::error_code ignored;
     fs::remove(state_file, ignored);
   }
@@ -379,7 +399,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   const std::string engagement = snee_engagement_note(options, result.stats);
   if (!engagement.empty()) std::fprintf(stderr, "%s\n", engagement.c_str());
   write_images(result.film, images);
-  if (!stats_.empty()) write_json_file(stats_json(name, options, result), stats_);
+  if (!stats_.empty()) write_json_file(stats_json(name, options, result, stats_tiles_), stats_);
   if (result.complete) {
     std::printf("rendered %s: %s, %dx%d, %s, %.2f s, %.1f Mrays/s\n", name.c_str(),
                 options.integrator.c_str(), result.film.width, result.film.height,

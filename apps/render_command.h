@@ -16,7 +16,9 @@
 namespace snee {
 
 // How a render split across processes (apps/mpi/) shares the work: this process renders shard
-// `shard` of `shard_count` (RenderOptions). `stop_together` is asked while rendering with this
+// `shard` of `shard_count` (RenderOptions), or, with `tile_source`, the tiles it claims while
+// it renders (RenderHooks::tile_source; then shard_count only says how many processes share
+// the render). `stop_together` is asked while rendering with this
 // process's exit status for a signal so far (0 if none, else 128 + its number), tells the
 // others of one, and says whether any process has had one, so all stop together. `join`
 // gathers every shard's result into one process's and turns `exit_status` (this process's)
@@ -25,6 +27,7 @@ namespace snee {
 struct RenderDistribution {
   int shard = 0;
   int shard_count = 1;
+  std::function<TileRange()> tile_source;
   std::function<bool(int exit_status)> stop_together;
   std::function<bool(RenderResult&, int& exit_status)> join;
 };
@@ -45,6 +48,7 @@ class RenderCommand {
   RenderOptions options_;
   std::string output_;
   std::string stats_;
+  bool stats_tiles_ = false;  // tile_seconds in the --stats JSON
   std::string resolution_;
   double checkpoint_seconds_ = 0;
   std::string resume_;  // the EXR whose checkpoint state the render goes on from

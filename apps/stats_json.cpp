@@ -36,8 +36,23 @@ nlohmann::ordered_json simd_lanes_json(const RenderStats& stats) {
           {"kernels", kernels}};
 }
 
+namespace {
+
+nlohmann::ordered_json processes_json(const std::vector<ProcessShare>& processes) {
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const ProcessShare& p : processes) {
+    all.push_back({{"threads", p.threads},
+                   {"tiles", p.tiles},
+                   {"busy_seconds", p.busy_seconds},
+                   {"join_seconds", p.join_seconds}});
+  }
+  return all;
+}
+
+}  // namespace
+
 nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
-                                  const RenderResult& result) {
+                                  const RenderResult& result, bool tile_seconds) {
   const RenderStats& stats = result.stats;
   nlohmann::ordered_json snee = nlohmann::ordered_json::object();
   snee["engaged"] = stats.snee_engaged;
@@ -46,7 +61,7 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
   for (int c = 0; c < kSneeCounterCount; ++c)
     snee[snee_counter_name(static_cast<SneeCounter>(c))] = stats.snee[c];
 
-  return {
+  nlohmann::ordered_json json = {
       {"version", SNEE_VERSION},
       {"scene", scene},
       {"integrator", options.integrator},
@@ -75,6 +90,9 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"snee_options", snee_options_json(options.snee)},
       {"snee", snee},
   };
+  if (!stats.processes.empty()) json["processes"] = processes_json(stats.processes);
+  if (tile_seconds) json["tile_seconds"] = stats.tile_seconds;
+  return json;
 }
 
 nlohmann::ordered_json snee_options_json(const SneeOptions& snee) {

@@ -19,8 +19,10 @@ nlohmann::ordered_json stage_seconds_json(const RenderStats& stats);
 // SIMD width and lane occupancy, overall and per batched stage kernel.
 nlohmann::ordered_json simd_lanes_json(const RenderStats& stats);
 
+// With `tile_seconds`, also RenderStats::tile_seconds; a split render's processes are listed
+// whenever there are several.
 nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions& options,
-                                  const RenderResult& result);
+                                  const RenderResult& result, bool tile_seconds = false);
 // The SNEE options as `--stats` and the EXR's snee:render_options write them.
 nlohmann::ordered_json snee_options_json(const SneeOptions& snee);
 

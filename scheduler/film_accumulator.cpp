@@ -70,8 +70,10 @@ bool FilmAccumulator::wants(size_t unit) const {
   return !tile.converged && grid_.chunk_of(unit) >= tile.next_chunk;
 }
 
-bool FilmAccumulator::tiles_done(uint32_t chunks) const {
+bool FilmAccumulator::tiles_done(uint32_t chunks,
+                                 const std::function<bool(size_t tile)>& counts) const {
   for (size_t t = 0; t < grid_.tile_count(); ++t) {
+    if (counts && !counts(t)) continue;
     Tile& tile = tiles_[t];
     std::lock_guard<std::mutex> lock(tile.mutex);
     if (!tile.converged && tile.next_chunk < chunks) return false;
@@ -143,7 +145,7 @@ void FilmAccumulator::estimate(size_t p, uint32_t spp, double mean[3],
 bool FilmAccumulator::meets_noise_target(size_t t) const {
   const uint32_t spp = tile_spp(tiles_[t]);
   if (spp < std::min(grid_.spp(), kMinAdaptiveSpp)) return false;
-  const WorkUnit u = grid_.unit(t);
+  const WorkUnit u = grid_.tile(t);
   for (int y = u.y0; y < u.y1; ++y) {
     for (int x = u.x0; x < u.x1; ++x) {
       double mean[3], variance_of_mean[3];
@@ -175,7 +177,7 @@ Film FilmAccumulator::resolve(const FilmMetadata& meta) const {
     const uint32_t spp = tile_spp(tile);
     min_spp = std::min(min_spp, spp);
     if (spp == 0) continue;
-    const WorkUnit u = grid_.unit(t);
+    const WorkUnit u = grid_.tile(t);
     for (int y = u.y0; y < u.y1; ++y) {
       for (int x = u.x0; x < u.x1; ++x) {
         const size_t p = static_cast<size_t>(y) * width_ + x;
@@ -203,7 +205,7 @@ FilmState FilmAccumulator::state() const {
     Tile& tile = tiles_[t];
     std::lock_guard<std::mutex> lock(tile.mutex);
     state.tiles[t] = {tile.next_chunk, tile.converged};
-    const WorkUnit u = grid_.unit(t);
+    const WorkUnit u = grid_.tile(t);
     for (int y = u.y0; y < u.y1; ++y) {
       for (int x = u.x0; x < u.x1; ++x) {
         const size_t p = 3 * (static_cast<size_t>(y) * width_ + x);
@@ -221,7 +223,7 @@ void FilmAccumulator::restore(const FilmState& state) {
                                 " tiles, the render " + std::to_string(grid_.tile_count()));
   size_t pixels = 0;
   for (size_t t = 0; t < grid_.tile_count(); ++t)
-    pixels += static_cast<size_t>(grid_.unit(t).pixel_count());
+    pixels += static_cast<size_t>(grid_.tile(t).pixel_count());
   if (state.sums.size() != kSumsPerPixel * pixels)
     throw std::invalid_argument("the state has " + std::to_string(state.sums.size()) +
                                 " sums, the render's tiles need " +
@@ -236,7 +238,7 @@ void FilmAccumulator::restore(const FilmState& state) {
     std::lock_guard<std::mutex> lock(tile.mutex);
     tile.next_chunk = state.tiles[t].chunks;
     tile.converged = state.tiles[t].converged;
-    const WorkUnit u = grid_.unit(t);
+    const WorkUnit u = grid_.tile(t);
     for (int y = u.y0; y < u.y1; ++y) {
       for (int x = u.x0; x < u.x1; ++x, sums += kSumsPerPixel) {
         const size_t p = 3 * (static_cast<size_t>(y) * width_ + x);

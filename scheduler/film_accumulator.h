@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -42,8 +43,9 @@ class FilmAccumulator {
   // Whether unit k's tile still takes unit k: it has not met the noise target and does not hold
   // the unit's chunk already (restored from a checkpoint). Thread-safe.
   bool wants(size_t unit) const;
-  // Whether every tile holds its first `chunks` chunks or has met the noise target.
-  bool tiles_done(uint32_t chunks) const;
+  // Whether every tile holds its first `chunks` chunks or has met the noise target; with
+  // `counts`, only the tiles it says true for (a process's own, RenderHooks::tile_source).
+  bool tiles_done(uint32_t chunks, const std::function<bool(size_t tile)>& counts = {}) const;
   // Mean and variance of the mean per pixel over the samples added so far (a tile's chunks up
   // to its first missing one), with `meta` and its spp and min_spp filled in. Once every unit
   // is in, that is the image; before, a snapshot in which every pixel is an unbiased estimate

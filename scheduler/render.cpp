@@ -44,7 +44,8 @@ int max_render_threads() {
 
 namespace {
 
-void validate(const Scene& scene, const RenderOptions& o) {
+void validate(const Scene& scene, const RenderOptions& o, const RenderHooks& hooks,
+              const FilmState* resume) {
   if (o.spp < 1) throw std::invalid_argument("spp must be at least 1");
   if (o.threads < 0 || o.threads > max_render_threads())
     throw std::invalid_argument("threads must be 0 (all) or from 1 to " +
@@ -68,6 +69,9 @@ void validate(const Scene& scene, const RenderOptions& o) {
     throw std::invalid_argument("time budget must be a finite number of seconds, 0 for none");
   if (!(o.noise_target >= 0) || !std::isfinite(o.noise_target))
     throw std::invalid_argument("noise target must be a finite relative error, 0 for none");
+  if (hooks.tile_source && (o.time_seconds > 0 || resume || o.shard_count > 1))
+    throw std::invalid_argument(
+        "tiles claimed while rendering go with no time budget, resumed state or shard");
 }
 
 // Units in flight per thread (the window's lead, unit_window.h). A unit holds up the threads
@@ -137,7 +141,7 @@ void add_workspace_stats(const UnitWorkspace& ws, KernelCounters& counters, Rend
 
 RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks,
                     const FilmState* resume) {
-  validate(scene, options);
+  validate(scene, options, hooks, resume);
   const Integrator requested = parse_integrator(options.integrator);
   // SNEE pays only for lights that unidirectional sampling rarely finds (docs/method.md 3.11).
   const float smallest_light = smallest_light_half_angle_degrees(scene);
@@ -181,7 +185,10 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   const uint32_t spp = static_cast<uint32_t>(options.spp);
   const UnitGrid grid(width, height, options.tile_size, spp,
                       static_cast<uint32_t>(options.samples_per_unit), options.shard,
-                      options.shard_count);
+                      options.shard_count,
+                      hooks.tile_source ? UnitOrder::kTileMajor : UnitOrder::kRoundMajor);
+  TileClaims claims(grid.tile_count(), hooks.tile_source);
+  TileCosts costs(grid.raster_tile_count());
   // A shard may own no tile at all (more processes than tiles); its window still needs a lead.
   const size_t lead = std::max<size_t>(1, std::min(grid.size(), kUnitsInFlightPerThread * threads));
   UnitWindow window(grid.size(), lead);
@@ -205,7 +212,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
       start - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                   std::chrono::duration<double>(resumed_seconds));
   TimeBudget time_budget(options.time_seconds, resumed_start, rounds_begun);
-  const UnitSource source{grid, window, film_sums, unit_progress, time_budget};
+  const UnitSource source{grid, window, film_sums, unit_progress, time_budget, claims, costs};
 
   // The megakernel is the same loop over one-slot workspaces: one path at a time per thread.
   const size_t slots =
@@ -233,7 +240,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   if (!options.aovs.normal) film.normal.clear();
   if (!options.aovs.depth) film.depth.clear();
   // Complete: every tile holds the rounds it was to take, or has met the noise target.
-  result.complete = film_sums.tiles_done(time_budget.rounds(grid.chunk_count()));
+  result.complete = film_sums.tiles_done(time_budget.rounds(grid.chunk_count()),
+                                         [&](size_t t) { return claims.claimed(t); });
   result.time_budget_spent = time_budget.spent();
   RenderStats& stats = result.stats;
   const auto end = std::chrono::steady_clock::now();
@@ -241,6 +249,8 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   stats.sampling_seconds = std::chrono::duration<double>(end - sampling_start).count();
   stats.sampling_cpu_seconds = cpu_seconds() - sampling_cpu_start;
   stats.threads = threads;
+  stats.tiles_rendered = costs.tiles_run();
+  stats.tile_seconds = costs.seconds();
   stats.path_state_bytes_per_slot = PathState::bytes_per_slot();
   KernelCounters counters;
   uint64_t slot_turns = 0, active_slot_turns = 0;

@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "kernels/kernel_context.h"
 #include "kernels/snee/snee_options.h"
@@ -82,6 +83,12 @@ struct Progress {
 };
 using ProgressCallback = std::function<void(const Progress&)>;
 
+// Tiles [begin, end) by their index in raster order over the whole image (unit_grid.h).
+struct TileRange {
+  size_t begin = 0;
+  size_t end = 0;
+};
+
 // What a caller can watch and steer while a render runs; every member is optional. The
 // callbacks run on whichever worker just finished a work unit, one checkpoint at a time.
 struct RenderHooks {
@@ -99,6 +106,23 @@ struct RenderHooks {
   // film of the units finished so far: a stop takes effect within a turn, whatever the
   // thread count or the cost of a unit.
   std::function<bool()> stop_requested;
+  // For processes that share out the tiles while they render (apps/mpi/): each call claims the
+  // next tiles in raster order for this process, tiles no other process gets, and returns an
+  // empty range once none are left. It is called, one call at a time, whenever the render
+  // reaches a tile past its claims; the tiles between two claims are other processes' and stay
+  // black here. The units then go tile by tile (UnitOrder::kTileMajor), so a process claims
+  // until the very end and a fast one simply claims more. Unset: every tile of the shard is
+  // this process's. Not with a time budget (its rounds would be cut at a different tile in
+  // every process), a resumed state (that holds a fixed set of tiles) or a shard.
+  std::function<TileRange()> tile_source;
+};
+
+// One process's part in a render split across processes (RenderStats::processes).
+struct ProcessShare {
+  int threads = 0;
+  uint64_t tiles = 0;       // tiles it ran at least one unit of
+  double busy_seconds = 0;  // its sampling wall clock (RenderStats::sampling_seconds)
+  double join_seconds = 0;  // waiting for the others at the join, once done
 };
 
 struct RenderStats {
@@ -124,6 +148,13 @@ struct RenderStats {
   size_t simd_width = 0;                                // lanes per SIMD batch in this build
   size_t path_state_bytes_per_slot = 0;
   int threads = 0;
+  uint64_t tiles_rendered = 0;  // tiles at least one unit of which ran in this render
+  // Seconds of the stages of each tile's units, summed over threads, by tile in raster order
+  // over the whole image (0 for tiles not run here): the measured cost map of the image.
+  std::vector<double> tile_seconds;
+  // Of a render split across processes, one per process in rank order, filled in by whoever
+  // joins them; empty for one process.
+  std::vector<ProcessShare> processes;
   uint64_t total_rays() const;
   LaneCount all_simd_lanes() const;
   double mrays_per_second() const { return seconds > 0 ? total_rays() / seconds * 1e-6 : 0; }

@@ -9,6 +9,8 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "scheduler/film_accumulator.h"
+#include "scheduler/tile_claims.h"
+#include "scheduler/tile_costs.h"
 #include "scheduler/time_budget.h"
 #include "scheduler/unit_grid.h"
 #include "scheduler/unit_progress.h"
@@ -24,14 +26,19 @@ struct UnitSource {
   FilmAccumulator& film;
   UnitProgress& progress;
   TimeBudget& time_budget;
+  TileClaims& claims;
+  TileCosts& costs;
 
-  // The next unit to run, from the window (UnitWindow::take). Units of tiles that have met the
-  // noise target are finished unrun; once the time budget is spent, the window closes at the
-  // first unit of the next round (nullopt) and the units in flight finish.
+  // The next unit to run, from the window (UnitWindow::take). Units of other processes' tiles
+  // (TileClaims) and of tiles that have met the noise target are finished unrun; once the time
+  // budget is spent, the window closes at the first unit of the next round (nullopt) and the
+  // units in flight finish.
   std::optional<size_t> take(bool wait) const;
   // Unit k has run in `ws`. Its samples go into the film before the window learns it finished:
   // only then may a later unit reuse its sample buffer. Stops the window if asked to.
   void unit_done(size_t k, const UnitWorkspace& ws) const {
+    costs.add(grid.raster_index(grid.tile_of(k)),
+              stage_seconds_total(ws) - ws.stage_seconds_at_start);
     film.add(k);
     window.finish(k);
     if (!progress.unit_finished(ws)) window.abort();

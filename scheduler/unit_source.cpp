@@ -11,7 +11,8 @@ std::optional<size_t> UnitSource::take(bool wait) const {
       window.abort();
       return std::nullopt;
     }
-    if (film.wants(*k)) return k;
+    // Asked tile by tile in the window's order, so claims follow the render (tile_claims.h).
+    if (claims.owns(grid.tile_of(*k)) && film.wants(*k)) return k;
     window.finish(*k);
     progress.unit_skipped(static_cast<int64_t>(grid.unit(*k).sample_count()));
   }

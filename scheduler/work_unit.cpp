@@ -160,9 +160,16 @@ void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws, float* a
   ws.active = 0;
   ws.rays_at_start = rays_traced(ws.counters);
   ws.nonfinite_at_start = ws.counters.nonfinite_samples;
+  ws.stage_seconds_at_start = stage_seconds_total(ws);
   ws.free_slots.resize(ws.slots);
   // Slots are handed out from the back, so start with slot 0 there.
   for (size_t i = 0; i < ws.slots; ++i) ws.free_slots[i] = static_cast<uint32_t>(ws.slots - 1 - i);
+}
+
+double stage_seconds_total(const UnitWorkspace& ws) {
+  double total = 0;
+  for (const double s : ws.stage_seconds) total += s;
+  return total;
 }
 
 bool work_unit_finished(const UnitWorkspace& ws) {

@@ -50,6 +50,7 @@ struct UnitWorkspace {
   size_t active = 0;         // slots holding a path
   uint64_t rays_at_start = 0;
   uint64_t nonfinite_at_start = 0;
+  double stage_seconds_at_start = 0;  // stage_seconds summed, when the unit started
 
   KernelCounters counters;
   std::array<double, kStageCount> stage_seconds{};
@@ -67,6 +68,8 @@ struct UnitWorkspace {
 // records them) to the kAovFloats floats from aov_out + that index * kAovFloats.
 void start_work_unit(const WorkUnit& unit, Rgb* out, UnitWorkspace& ws, float* aov_out = nullptr);
 bool work_unit_finished(const UnitWorkspace& ws);
+// The workspace's stage seconds, summed over stages.
+double stage_seconds_total(const UnitWorkspace& ws);
 // Runs one stage of the current unit's loop (a turn is kStageLoop in order); a stage whose
 // input is empty is skipped.
 void run_stage(const KernelContext& ctx, Stage stage, UnitWorkspace& ws);

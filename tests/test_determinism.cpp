@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <vector>
 
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
@@ -89,6 +90,59 @@ TEST_P(Determinism, ShardsAddUpToTheWholeImage) {
   bad.shard = 2;
   bad.shard_count = 2;
   EXPECT_THROW(render(scene, bad), std::invalid_argument);
+}
+
+// Processes that claim tiles while they render (RenderHooks::tile_source) take the tiles
+// tile by tile rather than round by round, and each gets whatever ranges the shared counter
+// gives it: whoever renders a tile computes it exactly as a single process would, so the
+// processes' films add up to the whole film bit for bit, whichever schedule they run.
+TEST_P(Determinism, ClaimedTilesAddUpToTheWholeImage) {
+  Scene scene = load_builtin_scene("bunny-cone-r0.04").scene;
+  scene.camera.width = 40;
+  scene.camera.height = 24;
+  RenderOptions o;
+  o.spp = 5;
+  o.seed = 2;
+  o.integrator = GetParam();
+  o.threads = 2;
+  o.tile_size = 8;         // 15 tiles
+  o.samples_per_unit = 2;  // 3 chunks a tile, the last one short
+  const Film whole = render(scene, o).film;
+  // The counter's claims in the order it handed them out, alternately to the two processes.
+  const std::vector<TileRange> claims = {{0, 2}, {2, 3}, {3, 7}, {7, 8}, {8, 20}};
+  for (const char* schedule : {"local", "global"}) {
+    Film sum = whole;
+    std::fill(sum.mean.begin(), sum.mean.end(), Rgb(0.0f));
+    std::fill(sum.variance_of_mean.begin(), sum.variance_of_mean.end(), Rgb(0.0f));
+    uint64_t paths = 0, tiles = 0;
+    for (size_t process = 0; process < 2; ++process) {
+      size_t next = process;
+      RenderHooks hooks;
+      hooks.tile_source = [&] {
+        const TileRange claim = next < claims.size() ? claims[next] : TileRange{99, 100};
+        next += 2;
+        return claim;
+      };
+      RenderOptions part = o;
+      part.schedule = schedule;
+      const RenderResult r = render(scene, part, hooks);
+      EXPECT_TRUE(r.complete) << schedule;
+      paths += r.stats.paths;
+      tiles += r.stats.tiles_rendered;
+      for (size_t p = 0; p < sum.mean.size(); ++p) {
+        sum.mean[p] += r.film.mean[p];
+        sum.variance_of_mean[p] += r.film.variance_of_mean[p];
+      }
+    }
+    EXPECT_EQ(paths, 40u * 24u * 5u) << schedule;
+    EXPECT_EQ(tiles, 15u) << schedule;
+    EXPECT_TRUE(test::bitwise_identical(whole, sum)) << schedule;
+  }
+  RenderHooks all;
+  all.tile_source = [] { return TileRange{0, 100}; };
+  RenderOptions timed = o;
+  timed.time_seconds = 10;
+  EXPECT_THROW(render(scene, timed, all), std::invalid_argument);
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, Determinism, ::testing::Values("pt", "snee", "sla"));

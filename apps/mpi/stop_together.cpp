@@ -8,7 +8,8 @@ constexpr auto kPollInterval = std::chrono::milliseconds(5);
 
 }  // namespace
 
-StopTogether::StopTogether(MPI_Comm comm) : comm_(comm) {
+StopTogether::StopTogether(MPI_Comm comm, std::mutex& mpi_mutex)
+    : comm_(comm), mpi_mutex_(mpi_mutex) {
   MPI_Irecv(&incoming_status_, 1, MPI_INT, MPI_ANY_SOURCE, kStopTag, comm_, &incoming_request_);
 }
 
