@@ -47,7 +47,7 @@ struct CameraFixture {
 };
 
 void generate_scalar(CameraFixture& f) {
-  const FilmCamera camera = film_camera(f.ctx);
+  const FilmCamera camera = film_camera(f.ctx.camera, f.ctx.width, f.ctx.height);
   PathState& st = f.state;
   for (size_t i = 0; i < bench::kItems; ++i) {
     const uint32_t s = f.slots[i];

@@ -5,9 +5,9 @@
 
 #include <cstdint>
 
-#include "kernels/kernel_context.h"
 #include "kernels/rng.h"
 #include "kernels/sampling.h"
+#include "scene/camera_frame.h"
 
 namespace snee {
 
@@ -17,9 +17,10 @@ struct FilmCamera {
   float inv_width, inv_height;
 };
 
-inline FilmCamera film_camera(const KernelContext& ctx) {
-  return {ctx.camera, static_cast<uint32_t>(ctx.width), 1.0f / static_cast<float>(ctx.width),
-          1.0f / static_cast<float>(ctx.height)};
+// The camera of a width x height film (KernelContext::camera, width and height).
+inline FilmCamera film_camera(const CameraFrame& frame, int width, int height) {
+  return {frame, static_cast<uint32_t>(width), 1.0f / static_cast<float>(width),
+          1.0f / static_cast<float>(height)};
 }
 
 // forward + x right + y up through film position (px + u0, py + u1), not normalized: its

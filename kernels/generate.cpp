@@ -18,7 +18,7 @@ void generate_camera_rays(const KernelContext& ctx, PathState& state, const uint
   using simd::FloatBatch;
   using simd::IntBatch;
   using simd::UintBatch;
-  const FilmCamera camera = film_camera(ctx);
+  const FilmCamera camera = film_camera(ctx.camera, ctx.width, ctx.height);
   for (size_t begin = 0; begin < n; begin += simd::kLanes) {
     const size_t count = std::min(simd::kLanes, n - begin);
     const simd::SlotChunk chunk(slots + begin, count);

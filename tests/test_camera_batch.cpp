@@ -119,7 +119,7 @@ class GenerateCameraRays : public ::testing::TestWithParam<bool> {
     }
     ASSERT_EQ(q.extend.size(), n);
     EXPECT_EQ(counters.paths, n);
-    const FilmCamera camera = film_camera(ctx_);
+    const FilmCamera camera = film_camera(ctx_.camera, ctx_.width, ctx_.height);
     float worst = 0;
     std::vector<bool> listed(state.capacity(), false);
     for (size_t i = 0; i < n; ++i) {
