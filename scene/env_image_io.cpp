@@ -3,6 +3,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -23,6 +24,55 @@ bool is_srgb_encoded(const OIIO::ImageSpec& spec) {
   if (OIIO::Strutil::iequals(color_space, "sRGB")) return true;
   if (OIIO::Strutil::iequals(color_space, "Linear")) return false;
   return !spec.format.is_floating_point();
+}
+
+// Decodes every pixel to float, a band at a time so that no buffer is sized by anything but the
+// image's own size. OpenImageIO's read_image converts through a buffer of a whole number of TIFF
+// strips, sized by the RowsPerStrip tag and not by the image's height: a 4x4 deflate TIFF
+// claiming 2^31 rows per strip made it ask for gigabytes or decode for half an hour. Reading one
+// scanline (or one row of tiles) at a time converts through a buffer of that one band;
+// decoded_what and decoded_bytes describe the float pixels and the image made from them, already
+// checked against the budget; a row of tiles is read while they are held.
+std::vector<float> decode_as_float(OIIO::ImageInput& input, const std::string& path,
+                                   const MemoryBudget& budget, const std::string& decoded_what,
+                                   uint64_t decoded_bytes) {
+  const OIIO::ImageSpec& spec = input.spec();
+  const size_t row_values = static_cast<size_t>(spec.width) * spec.nchannels;
+  std::vector<float> data(row_values * spec.height);
+  const auto fail = [&](int row) {
+    return SceneError(path + ": cannot decode environment image at row " + std::to_string(row) +
+                      ": " + input.geterror());
+  };
+  if (spec.tile_width <= 0) {
+    for (int row = 0; row < spec.height; ++row) {
+      if (!input.read_scanline(spec.y + row, spec.z, OIIO::TypeDesc::FLOAT,
+                               &data[row * row_values])) {
+        throw fail(row);
+      }
+    }
+    return data;
+  }
+  // OpenImageIO reads a row of tiles whole, in the file's own format, before converting it.
+  const uint64_t tiles_across = (static_cast<uint64_t>(spec.width) + spec.tile_width - 1) /
+                                static_cast<uint64_t>(spec.tile_width);
+  const uint64_t needed =
+      saturating_add(decoded_bytes, saturating_multiply(tiles_across, spec.tile_bytes(true)));
+  if (!budget.allows(needed)) {
+    throw SceneError(path + ": " +
+                     budget.exceeded(decoded_what + " and a row of " +
+                                         std::to_string(spec.tile_width) + "x" +
+                                         std::to_string(spec.tile_height) + " tiles",
+                                     needed));
+  }
+  for (int row = 0; row < spec.height; row += spec.tile_height) {
+    const int rows = std::min(spec.tile_height, spec.height - row);
+    if (!input.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + row, spec.y + row + rows,
+                          spec.z, spec.z + 1, 0, spec.nchannels, OIIO::TypeDesc::FLOAT,
+                          &data[row * row_values])) {
+      throw fail(row);
+    }
+  }
+  return data;
 }
 
 }  // namespace
@@ -61,17 +111,14 @@ EnvImage read_env_image(const std::string& path, const MemoryBudget& budget) {
   // bounds the decoded channels and the RGB image made from them.
   const uint64_t decoded_bytes =
       saturating_multiply(pixels, channels * sizeof(float) + sizeof(Rgb));
+  const std::string decoded_what = "the decoded " + std::to_string(spec.width) + "x" +
+                                   std::to_string(spec.height) + " pixels of " +
+                                   std::to_string(channels) + " channels";
   if (!budget.allows(decoded_bytes)) {
-    throw SceneError(path + ": " +
-                     budget.exceeded("the decoded " + std::to_string(spec.width) + "x" +
-                                         std::to_string(spec.height) + " pixels of " +
-                                         std::to_string(channels) + " channels",
-                                     decoded_bytes));
+    throw SceneError(path + ": " + budget.exceeded(decoded_what, decoded_bytes));
   }
-  std::vector<float> data(static_cast<size_t>(spec.width) * spec.height * channels);
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
-    throw SceneError(path + ": cannot decode environment image: " + input->geterror());
-  }
+  const std::vector<float> data =
+      decode_as_float(*input, path, budget, decoded_what, decoded_bytes);
   const bool srgb = is_srgb_encoded(spec);
 
   EnvImage image;

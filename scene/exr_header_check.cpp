@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
+#include <utility>
 
 #include "scene/scene_error.h"
 
@@ -87,8 +89,90 @@ class HeaderScanner {
         fail(attribute + " declares " + std::to_string(size) + " bytes, but only " +
              std::to_string(left) + " bytes follow in the file");
       }
-      at_ += static_cast<size_t>(size);
+      const size_t value_start = at_;
+      check_value(type, static_cast<size_t>(size), attribute);
+      at_ = value_start + static_cast<size_t>(size);
     }
+  }
+
+  // OpenEXR's Header::readFrom reads a value of a type it knows by that type's own layout and
+  // then goes on from wherever that left it, not from the end the size declares: a channel list
+  // declared as 55 bytes but ending after 19 made it read the next attribute from inside this
+  // one, with a 1.9 GB string size (a fuzzer finding). So each known type's value must take
+  // exactly the bytes declared. Types OpenEXR does not know are read as `size` opaque bytes.
+  void check_value(std::string_view type, size_t size, const std::string& attribute) {
+    const auto mismatch = [&](const std::string& what, uint64_t takes) {
+      fail(attribute + " declares " + std::to_string(size) + " bytes, but " + what + " takes " +
+           std::to_string(takes));
+    };
+    if (const auto fixed = fixed_value_size(type)) {
+      if (size != *fixed) mismatch("a value of its type", *fixed);
+    } else if (type == "floatvector") {
+      if (size % 4 != 0) mismatch("a whole number of floats", size / 4 * 4);
+    } else if (type == "chlist") {
+      // Channels, each a name and 16 bytes (type, linearity, 3 reserved, x and y sampling),
+      // until an empty name.
+      const size_t start = at_;
+      while (!next_is_terminator()) {
+        read_name("channel name", attribute);
+        if (bytes_.size() - at_ < 16) fail("the file ends inside a channel of " + attribute);
+        at_ += 16;
+      }
+      if (at_ - start != size) mismatch("its channel list", at_ - start);
+    } else if (type == "preview") {
+      // Width and height, then 4 bytes per pixel; OpenEXR allocates the pixels before reading.
+      if (size < 8) mismatch("a preview's width and height", 8);
+      const uint64_t width = little_endian_u32(bytes_, at_);
+      const uint64_t height = little_endian_u32(bytes_, at_ + 4);
+      const uint64_t takes = 8 + width * height * 4;
+      if (takes != size)
+        mismatch("its " + std::to_string(width) + "x" + std::to_string(height) + " preview", takes);
+    } else if (type == "stringvector") {
+      // Strings, each a 32-bit length and its bytes, until the declared size is used up; OpenEXR
+      // sizes each string from its length before reading it.
+      size_t used = 0;
+      while (used < size) {
+        if (size - used < 4) mismatch("its strings", used + 4);
+        const int32_t length = static_cast<int32_t>(little_endian_u32(bytes_, at_ + used));
+        if (length < 0 || static_cast<size_t>(length) > size - used - 4) {
+          fail(attribute + " holds a string of " + std::to_string(length) + " bytes where only " +
+               std::to_string(size - used - 4) + " are left of its " + std::to_string(size));
+        }
+        used += 4 + static_cast<size_t>(length);
+      }
+    }
+  }
+
+  // The value sizes of OpenEXR's fixed-layout attribute types.
+  static std::optional<size_t> fixed_value_size(std::string_view type) {
+    static constexpr std::pair<std::string_view, size_t> kSizes[] = {{"box2f", 16},
+                                                                     {"box2i", 16},
+                                                                     {"chromaticities", 32},
+                                                                     {"compression", 1},
+                                                                     {"deepImageState", 1},
+                                                                     {"double", 8},
+                                                                     {"envmap", 1},
+                                                                     {"float", 4},
+                                                                     {"int", 4},
+                                                                     {"keycode", 28},
+                                                                     {"lineOrder", 1},
+                                                                     {"m33d", 72},
+                                                                     {"m33f", 36},
+                                                                     {"m44d", 128},
+                                                                     {"m44f", 64},
+                                                                     {"rational", 8},
+                                                                     {"tiledesc", 9},
+                                                                     {"timecode", 8},
+                                                                     {"v2d", 16},
+                                                                     {"v2f", 8},
+                                                                     {"v2i", 8},
+                                                                     {"v3d", 24},
+                                                                     {"v3f", 12},
+                                                                     {"v3i", 12}};
+    for (const auto& [name, value_size] : kSizes) {
+      if (name == type) return value_size;
+    }
+    return std::nullopt;
   }
 
   std::string_view bytes_;

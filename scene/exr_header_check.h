@@ -4,9 +4,11 @@
 // minutes, inside its own header read, before snee learns any image size to check against the
 // memory budget. Here every attribute of every header (single-part, tiled, deep and multi-part
 // files alike) is walked without allocating: its name and type must end within OpenEXR's name
-// limit and its declared size must fit in the bytes left in the file. The file itself is within
-// the memory budget (input_file.h), so no header-sized allocation can exceed it either. What
-// the values mean is left to OpenEXR.
+// limit, its declared size must fit in the bytes left in the file, and a value of a type
+// OpenEXR reads by its own layout (fixed-size types, channel lists, previews, string vectors)
+// must take exactly the declared size, since OpenEXR carries on from where its layout ended.
+// The file itself is within the memory budget (input_file.h), so no header-sized allocation
+// can exceed it either. What the values mean is left to OpenEXR.
 #pragma once
 
 #include <string>
@@ -19,8 +21,9 @@ bool has_exr_magic(std::string_view bytes);
 
 // For bytes that start with the EXR magic, throws SceneError "<path>: EXR header ..." naming the
 // attribute (and header, in a multi-part file) and the sizes when the version field is not one
-// OpenEXR 2 defines, a name or type is too long or unterminated, a declared size is negative or
-// larger than the bytes that follow it, or the file ends inside the headers. Any other bytes are
+// OpenEXR 2 defines, a name or type is too long or unterminated, a declared size is negative,
+// larger than the bytes that follow it or not what the value of its type takes, or the file
+// ends inside the headers. Any other bytes are
 // left alone.
 void check_exr_header(std::string_view bytes, const std::string& path);
 

@@ -5,17 +5,39 @@
 # left a crash, leak, timeout or out-of-memory artefact; they are kept in the output directory.
 #
 #   bash scripts/fuzz.sh [SECONDS_PER_FUZZER (default 60)] [FUZZER ...]
+#   bash scripts/fuzz.sh --runs FUZZER=RUNS [FUZZER=RUNS ...]
 #
 # FUZZER is scene_json, obj, ply or env_image (default: all four, one after another, one core
-# each). Output goes to $SNEE_FUZZ_OUT (default out/fuzz/): <loader>/corpus holds the inputs
-# this run found interesting, <loader>/ its artefacts and <loader>/log the fuzzer's output.
+# each). The first form explores for a time, from a random seed: new findings come from it. The
+# second replays the corpus and then makes exactly RUNS mutations from seed 1, the same inputs
+# on every machine, so that CI (.ci/run) fails only on what a run here would have found too.
+# Output goes to $SNEE_FUZZ_OUT (default out/fuzz/): <loader>/corpus holds the inputs this run
+# found interesting, <loader>/ its artefacts and <loader>/log the fuzzer's output.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-seconds=${1:-60}
-shift || true
-fuzzers=("$@")
-((${#fuzzers[@]} > 0)) || fuzzers=(scene_json obj ply env_image)
+fuzzers=()
+declare -A limit
+if [[ ${1:-} == --runs ]]; then
+  shift
+  (($# > 0)) || { echo "error: --runs needs FUZZER=RUNS arguments" >&2; exit 2; }
+  for spec in "$@"; do
+    if [[ ! $spec =~ ^(scene_json|obj|ply|env_image)=([1-9][0-9]*)$ ]]; then
+      echo "error: '$spec' is not FUZZER=RUNS (FUZZER: scene_json, obj, ply or env_image)" >&2
+      exit 2
+    fi
+    fuzzers+=("${BASH_REMATCH[1]}")
+    limit[${BASH_REMATCH[1]}]="-runs=${BASH_REMATCH[2]} -seed=1"
+  done
+  what="a fixed number of runs each, seed 1"
+else
+  seconds=${1:-60}
+  shift || true
+  fuzzers=("$@")
+  ((${#fuzzers[@]} > 0)) || fuzzers=(scene_json obj ply env_image)
+  for name in "${fuzzers[@]}"; do limit[$name]="-max_total_time=$seconds"; done
+  what="${seconds}s each"
+fi
 out=${SNEE_FUZZ_OUT:-out/fuzz}
 
 for tool in clang clang++; do
@@ -38,9 +60,11 @@ scratch_root=/dev/shm
 scratch=$(mktemp -d "$scratch_root/snee-fuzz.XXXXXX")
 trap 'rm -rf "$scratch"' EXIT
 
-# Leaks are findings (a leak report ends the run). Undefined behaviour aborts already
+# Leaks are findings (a leak report ends the run), except the library bugs
+# tests/sanitizer/lsan.supp lists with their reasons. Undefined behaviour aborts already
 # (-fno-sanitize-recover); the stack makes the report usable.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 
 failed=()
@@ -48,11 +72,12 @@ for name in "${fuzzers[@]}"; do
   dir=$out/$name
   rm -rf "$dir"
   mkdir -p "$dir/corpus"
-  options=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048
+  read -ra bound <<<"${limit[$name]}"
+  options=("${bound[@]}" -timeout=10 -rss_limit_mb=2048
            -print_final_stats=1 -artifact_prefix="$dir/")
   dict=tests/fuzz/$name.dict
   [[ -f $dict ]] && options+=(-dict="$dict")
-  echo "fuzz_$name: ${seconds}s, artefacts in $dir/" >&2
+  echo "fuzz_$name: ${limit[$name]}, artefacts in $dir/" >&2
   status=0
   TMPDIR=$scratch build-fuzz/tests/fuzz/fuzz_"$name" "${options[@]}" "$dir/corpus" \
     "tests/fuzz/corpus/$name" >"$dir/log" 2>&1 || status=$?
@@ -73,4 +98,4 @@ if ((${#failed[@]} > 0)); then
     "build-fuzz/tests/fuzz/fuzz_NAME ARTEFACT (tests/fuzz/README.md)" >&2
   exit 1
 fi
-echo "fuzzing: no findings in ${fuzzers[*]} (${seconds}s each)" >&2
+echo "fuzzing: no findings in ${fuzzers[*]} ($what)" >&2

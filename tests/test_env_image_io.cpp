@@ -52,6 +52,74 @@ long peak_rss_kib() {
   return usage.ru_maxrss;
 }
 
+// A little-endian 8-bit RGB TIFF of one deflate-compressed strip whose RowsPerStrip tag says
+// rows_per_strip, whatever the height. Every byte is 128. With valid_stream false the strip is
+// not a zlib stream at all.
+std::string deflate_tiff(uint32_t width, uint32_t height, uint32_t rows_per_strip,
+                         bool valid_stream) {
+  std::string out;
+  const auto put16 = [&out](uint32_t v) {
+    for (int i = 0; i < 2; ++i) out.push_back(static_cast<char>(v >> (8 * i) & 0xff));
+  };
+  const auto put32 = [&out](uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<char>(v >> (8 * i) & 0xff));
+  };
+  const std::string pixels(width * height * 3, '\x80');
+  std::string strip;
+  if (valid_stream) {
+    // A zlib stream of one stored (uncompressed) deflate block, which needs no compressor.
+    const auto size = static_cast<uint32_t>(pixels.size());
+    uint32_t a = 1, b = 0;
+    for (const char c : pixels) {
+      a = (a + static_cast<unsigned char>(c)) % 65521;
+      b = (b + a) % 65521;
+    }
+    const uint32_t adler = b << 16 | a;
+    strip = {'\x78', '\x01', '\x01'};
+    for (const uint32_t v : {size & 0xff, size >> 8 & 0xff, ~size & 0xff, ~size >> 8 & 0xff}) {
+      strip.push_back(static_cast<char>(v));
+    }
+    strip += pixels;
+    for (int i = 3; i >= 0; --i) strip.push_back(static_cast<char>(adler >> (8 * i) & 0xff));
+  } else {
+    strip = pixels;
+  }
+  struct Entry {
+    uint16_t tag, type;
+    uint32_t value;
+  };
+  constexpr uint16_t kShort = 3, kLong = 4;
+  constexpr uint32_t kEntries = 10;
+  const uint32_t strip_offset = 8 + 2 + 12 * kEntries + 4;
+  const Entry entries[kEntries] = {{256, kLong, width},
+                                   {257, kLong, height},
+                                   {258, kShort, 8},
+                                   {259, kShort, 8},  // bits per sample; deflate
+                                   {262, kShort, 2},
+                                   {273, kLong, strip_offset},  // RGB; strip offset
+                                   {277, kShort, 3},
+                                   {278, kLong, rows_per_strip},
+                                   {279, kLong, static_cast<uint32_t>(strip.size())},
+                                   {284, kShort, 1}};  // contiguous
+  out = "II*";
+  out.push_back('\0');
+  put32(8);
+  put16(kEntries);
+  for (const Entry& e : entries) {
+    put16(e.tag);
+    put16(e.type);
+    put32(1);
+    if (e.type == kShort) {
+      put16(e.value);
+      put16(0);
+    } else {
+      put32(e.value);
+    }
+  }
+  put32(0);
+  return out + strip;
+}
+
 std::string error_of(const std::string& path, const MemoryBudget& budget = {}) {
   try {
     read_env_image(path, budget);
@@ -161,8 +229,9 @@ TEST_F(EnvImageIoTest, OnlyRegularFilesAreRead) {
 }
 
 // The 379-byte fuzzer reproducer made OpenEXR allocate about 1.4 GB for one string attribute
-// and read it for minutes. It is refused from its header walk before OpenImageIO allocates
-// anything; the peak resident size grows by less than the file could ever justify.
+// and read it for minutes; the 375-byte one made it read a 1.9 GB string size from inside a
+// channel list shorter than declared. Both are refused from the header walk before OpenImageIO
+// allocates anything; the peak resident size grows by less than the files could ever justify.
 TEST_F(EnvImageIoTest, ExrAttributeSizeBeyondTheFileIsRefusedBeforeAllocating) {
   const std::string path = (dir_ / "huge-string-attribute.exr").string();
   std::ofstream(path, std::ios::binary) << test::exr_huge_string_attribute();
@@ -170,7 +239,66 @@ TEST_F(EnvImageIoTest, ExrAttributeSizeBeyondTheFileIsRefusedBeforeAllocating) {
   EXPECT_EQ(error_of(path), path +
                                 ": EXR header: attribute 'capDate' (string) declares "
                                 "1467572588 bytes, but only 352 bytes follow in the file");
+  const std::string channels = (dir_ / "short-channel-list.exr").string();
+  std::ofstream(channels, std::ios::binary) << test::exr_channel_list_shorter_than_declared();
+  EXPECT_NE(error_of(channels).find(channels + ": EXR header: attribute "), std::string::npos)
+      << error_of(channels);
   EXPECT_LT(peak_rss_kib() - peak_before_kib, 64 * 1024);
+}
+
+// The fuzzer's 8 GB allocation: a 4x4 deflate TIFF claiming 2^31 - 1 rows per strip made
+// read_image convert through a buffer of whole strips sized by that claim, and made a render
+// with it as the environment decode for half an hour. Valid strips read right whatever the
+// claim; a broken one is an error naming the row; neither grows the peak resident size.
+TEST_F(EnvImageIoTest, RowsPerStripBeyondTheImageSizesNoBuffer) {
+  const long peak_before_kib = peak_rss_kib();
+  for (const uint32_t rows_per_strip : {100000u, 2147483647u}) {
+    const std::string name = "rps" + std::to_string(rows_per_strip);
+    const std::string valid = (dir_ / (name + ".tif")).string();
+    std::ofstream(valid, std::ios::binary) << deflate_tiff(4, 3, rows_per_strip, true);
+    const EnvImage image = read_env_image(valid);
+    ASSERT_EQ(image.pixels.size(), 12u) << valid;
+    const float expected = std::pow((128.0f / 255.0f + 0.055f) / 1.055f, 2.4f);
+    for (const Rgb& p : image.pixels) EXPECT_FLOAT_EQ(p.y, expected) << valid;
+
+    const std::string broken = (dir_ / (name + "-broken.tif")).string();
+    std::ofstream(broken, std::ios::binary) << deflate_tiff(4, 4, rows_per_strip, false);
+    EXPECT_NE(error_of(broken).find(broken + ": cannot decode environment image at row 0: "),
+              std::string::npos)
+        << error_of(broken);
+  }
+  EXPECT_LT(peak_rss_kib() - peak_before_kib, 64 * 1024);
+}
+
+// Tiled files are read a row of tiles at a time, partial tiles at the right and bottom included.
+TEST_F(EnvImageIoTest, TiledImagesReadRowsOfTiles) {
+  constexpr int kWidth = 40, kHeight = 20;
+  std::vector<float> rgb(kWidth * kHeight * 3);
+  for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<float>(i);
+  for (const char* name : {"tiled.exr", "tiled.tif"}) {
+    const std::string path = (dir_ / name).string();
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out) << OIIO::geterror();
+    OIIO::ImageSpec spec(kWidth, kHeight, 3, OIIO::TypeDesc::FLOAT);
+    spec.tile_width = spec.tile_height = 16;
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, rgb.data())) << out->geterror();
+    out->close();
+    ASSERT_GT(OIIO::ImageInput::open(path)->spec().tile_width, 0) << path;
+
+    const EnvImage image = read_env_image(path);
+    ASSERT_EQ(image.pixels.size(), static_cast<size_t>(kWidth * kHeight)) << path;
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+      ASSERT_EQ(image.pixels[i].x, rgb[3 * i]) << path << " pixel " << i;
+      ASSERT_EQ(image.pixels[i].z, rgb[3 * i + 2]) << path << " pixel " << i;
+    }
+    // 19200 bytes of decoded pixels and 9216 of tiles (three across, 16x16 of 12 bytes).
+    const std::string message = error_of(path, MemoryBudget{kWidth * kHeight * 24 + 1000});
+    EXPECT_NE(message.find(path + ": the decoded 40x20 pixels of 3 channels and a row of 16x16 "
+                                  "tiles need 27.8 KiB, more than the memory budget of 19.7 KiB"),
+              std::string::npos)
+        << message;
+  }
 }
 
 // Images snee cannot use as a lat-long map are refused by name, not read into a wrong layout.

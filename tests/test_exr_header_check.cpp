@@ -45,6 +45,12 @@ void put_u32(std::string& bytes, size_t at, uint32_t value) {
   for (int i = 0; i < 4; ++i) bytes[at + i] = static_cast<char>(value >> (8 * i) & 0xff);
 }
 
+uint32_t little_endian(const std::string& bytes, size_t at) {
+  uint32_t value = 0;
+  for (int i = 3; i >= 0; --i) value = value << 8 | static_cast<unsigned char>(bytes[at + i]);
+  return value;
+}
+
 // The offset of the size field of the `occurrence`-th attribute named `name` of type `type`.
 size_t size_field_of(const std::string& bytes, const std::string& name, const std::string& type,
                      int occurrence = 0) {
@@ -105,6 +111,12 @@ TEST_F(ExrHeaderCheckTest, EveryKindOfExrOpenImageIoWritesPasses) {
   tiled.tile_width = tiled.tile_height = 16;
   OIIO::ImageSpec long_names = rgb_spec();
   long_names.attribute("an_attribute_name_longer_than_thirty_one_bytes", "set");
+  // Values of types the walk measures by their layout (m44f, v2f, int, float, stringvector).
+  OIIO::ImageSpec typed = rgb_spec();
+  const float matrix[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  typed.attribute("worldToCamera", OIIO::TypeDesc::TypeMatrix44, matrix);
+  const char* views[] = {"left", "right", ""};
+  typed.attribute("multiView", OIIO::TypeDesc(OIIO::TypeDesc::STRING, 3), views);
   OIIO::ImageSpec deep(4, 2, 0, OIIO::TypeDesc::FLOAT);
   deep.channelnames.clear();
   for (const char* channel : {"R", "G", "B", "A", "Z"}) deep.channelnames.push_back(channel);
@@ -113,16 +125,19 @@ TEST_F(ExrHeaderCheckTest, EveryKindOfExrOpenImageIoWritesPasses) {
   deep.z_channel = 4;
   deep.deep = true;
   const std::vector<std::pair<std::string, std::vector<OIIO::ImageSpec>>> files = {
-      {"scanline.exr", {scanline}},
-      {"tiled.exr", {tiled}},
-      {"long_names.exr", {long_names}},
-      {"deep.exr", {deep}},
-      {"multipart.exr", {scanline, scanline, scanline}},
+      {"scanline.exr", {scanline}}, {"typed.exr", {typed}},
+      {"tiled.exr", {tiled}},       {"long_names.exr", {long_names}},
+      {"deep.exr", {deep}},         {"multipart.exr", {scanline, scanline, scanline}},
   };
   for (const auto& [name, specs] : files) {
     const std::string bytes = write_exr(name, specs);
     ASSERT_TRUE(has_exr_magic(bytes)) << name;
     EXPECT_NO_THROW(check_exr_header(bytes, name)) << name;
+  }
+  // The attribute types the walk measures are really in these files.
+  const std::string with_types = write_exr("typed.exr", {typed});
+  for (const char* type : {"m44f", "stringvector", "chlist", "box2i", "compression", "v2f"}) {
+    EXPECT_NE(with_types.find(std::string(type) + '\0'), std::string::npos) << type;
   }
   // The flags the walk must honour are really set in these files.
   EXPECT_NE(write_exr("long_names.exr", {long_names})[5] & 0x04, 0);
@@ -143,6 +158,75 @@ TEST_F(ExrHeaderCheckTest, TheFuzzerReproducerIsRefused) {
   EXPECT_EQ(error_of(bytes), kPath +
                                  ": EXR header: attribute 'capDate' (string) declares "
                                  "1467572588 bytes, but only 352 bytes follow in the file");
+}
+
+TEST_F(ExrHeaderCheckTest, TheChannelListReproducerIsRefused) {
+  const std::string bytes = test::exr_channel_list_shorter_than_declared();
+  ASSERT_EQ(bytes.size(), 375u);
+  EXPECT_EQ(error_of(bytes), kPath +
+                                 ": EXR header: attribute '9v/1\x01"
+                                 "996cha0/v\x13s' (chlist) "
+                                 "declares 55 bytes, but its channel list takes 19");
+}
+
+// OpenEXR reads a value of a type it knows by that type's layout and carries on from where the
+// layout ended, so a declared size that differs from it is refused, for each kind of layout.
+TEST_F(ExrHeaderCheckTest, ValuesMustTakeTheirDeclaredSize) {
+  const std::string valid = write_exr("valid.exr", {rgb_spec()});
+  // A fixed-size type: dataWindow (box2i) is 16 bytes; declaring 8 is refused (the 8 that
+  // follow must still be in the file, so only a smaller size reaches this check).
+  std::string box = valid;
+  put_u32(box, size_field_of(valid, "dataWindow", "box2i"), 8);
+  EXPECT_EQ(error_of(box), kPath +
+                               ": EXR header: attribute 'dataWindow' (box2i) declares 8 bytes, "
+                               "but a value of its type takes 16");
+  // A channel list: RGB takes 3 * (2 + 16) + 1 = 55 bytes.
+  std::string channels = valid;
+  const size_t chlist = size_field_of(valid, "channels", "chlist");
+  EXPECT_EQ(little_endian(valid, chlist), 55u);
+  put_u32(channels, chlist, 60);
+  EXPECT_EQ(error_of(channels), kPath +
+                                    ": EXR header: attribute 'channels' (chlist) declares 60 "
+                                    "bytes, but its channel list takes 55");
+
+  // Hand-made headers for the types OpenImageIO does not write here.
+  const auto header = [](const std::string& type, const std::string& value, uint32_t declared) {
+    std::string bytes("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+    bytes += std::string("a") + '\0' + type + '\0' + "????" + value + '\0';
+    put_u32(bytes, 8 + 2 + type.size() + 1, declared);
+    return bytes;
+  };
+  const auto u32 = [](uint32_t v) {
+    std::string out(4, '\0');
+    put_u32(out, 0, v);
+    return out;
+  };
+  // A preview: width, height and 4 bytes per pixel, allocated by OpenEXR before it reads them.
+  const std::string preview = u32(2) + u32(1) + std::string(8, '\x7f');
+  EXPECT_NO_THROW(check_exr_header(header("preview", preview, 16), kPath));
+  EXPECT_EQ(error_of(header("preview", u32(65535) + u32(65535) + std::string(8, '\x7f'), 16)),
+            kPath +
+                ": EXR header: attribute 'a' (preview) declares 16 bytes, but its "
+                "65535x65535 preview takes 17179344908");
+  // A string vector: each string's 32-bit length must stay within the declared size.
+  const std::string strings = u32(4) + "left" + u32(5) + "right";
+  EXPECT_NO_THROW(check_exr_header(header("stringvector", strings, 17), kPath));
+  EXPECT_EQ(error_of(header("stringvector", u32(4) + "left" + u32(0x7fffffff), 12)),
+            kPath +
+                ": EXR header: attribute 'a' (stringvector) holds a string of 2147483647 "
+                "bytes where only 0 are left of its 12");
+  EXPECT_EQ(error_of(header("stringvector", u32(0xffffffff) + "left", 8)),
+            kPath +
+                ": EXR header: attribute 'a' (stringvector) holds a string of -1 bytes "
+                "where only 4 are left of its 8");
+  // A float vector is a whole number of floats.
+  EXPECT_NO_THROW(check_exr_header(header("floatvector", std::string(8, '\0'), 8), kPath));
+  EXPECT_EQ(error_of(header("floatvector", std::string(8, '\0'), 6)),
+            kPath +
+                ": EXR header: attribute 'a' (floatvector) declares 6 bytes, but a whole "
+                "number of floats takes 4");
+  // A type OpenEXR does not know is opaque bytes of any declared size.
+  EXPECT_NO_THROW(check_exr_header(header("snee_private", std::string(5, 'x'), 5), kPath));
 }
 
 TEST_F(ExrHeaderCheckTest, DeclaredSizesBeyondTheFileAreErrors) {

@@ -6,6 +6,14 @@
 
 namespace snee::test {
 
+inline std::string bytes_of_hex(const char* hex) {
+  std::string bytes;
+  for (const char* p = hex; p[0] != '\0'; p += 2) {
+    bytes.push_back(static_cast<char>(std::stoi(std::string(p, 2), nullptr, 16)));
+  }
+  return bytes;
+}
+
 // exr-huge-string-attribute (379 bytes): its first attribute, "capDate" of type "string",
 // declares 1467572588 bytes, and OpenEXR allocated them (about 1.4 GB) and read for minutes.
 inline std::string exr_huge_string_attribute() {
@@ -19,11 +27,24 @@ inline std::string exr_huge_string_attribute() {
       "6174696f00666c6f617400040000000000803f73637265656e57696e646f7743656e74657200763266000800"
       "0000000000000000000073637265656e57696e646f77576964746800666c6f617400040000000000803f0067"
       "01000000000000000000000c00000000400048003c003400380000";
-  std::string bytes;
-  for (const char* p = hex; p[0] != '\0'; p += 2) {
-    bytes.push_back(static_cast<char>(std::stoi(std::string(p, 2), nullptr, 16)));
-  }
-  return bytes;
+  return bytes_of_hex(hex);
+}
+
+// exr-channel-list-shorter-than-declared (375 bytes): an attribute of type "chlist" declares
+// 55 bytes but its channel list ends after 19, so OpenEXR read the next attribute from inside
+// it: a string whose size field is the text "\x13scr", and allocated those 1919120147 bytes.
+inline std::string exr_channel_list_shorter_than_declared() {
+  static const char* const hex =
+      "762f3101020000006361704461746500737472696e670013000000323032363a31323a30322030363a30323a"
+      "343939762f3101393936636861302f7613730063686c69737400370000004200010000000000000001762f31"
+      "01020000006361494949496500737472696e67001373637265656e57696e646f7743656e746572323a343663"
+      "68616e6e656c730063686c697374003700000042000100000000000000010000000100000047000100000000"
+      "00000001000000010000005200012f2f2f2f2f2f2f2f2f2f2f2f2f2f2f2f0000000000000001000000010000"
+      "0000636f6d7072657373696f6e00636f6d000000010000007072657373696f6e000100000000646174615769"
+      "6e646f7700626f783269001000000000000000000000000100000000000000ffffff096c617957696e646f77"
+      "00626f7832690010000000000000000000000001000000000000006c696e654f72646572006c696e654f7264"
+      "6572000100000000470001000000000000000100007000";
+  return bytes_of_hex(hex);
 }
 
 }  // namespace snee::test
