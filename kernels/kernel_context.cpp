@@ -124,6 +124,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                      Rgb(0.0f),
                      shape.smooth_shading};
     info.aov_albedo = aov_albedo(info);
+    info.closed = shape.closed;
     surfaces.push_back(info);
     if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
     if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {

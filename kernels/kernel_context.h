@@ -41,6 +41,9 @@ struct SurfaceInfo {
   Rgb aov_albedo;
   // Shaded with the mesh's interpolated vertex normals (Shape::smooth_shading; shading_normal.h).
   bool smooth_shading;
+  // A sphere or a mesh without boundary edges (Shape::closed): a ray is on one side of it, which
+  // the path tracks (kPathInsideVolume) for its dielectric and null boundaries.
+  bool closed = false;
   // A mirror or a smooth dielectric: no light sampling, no AOV vertex.
   bool delta() const {
     return (kind == MaterialKind::kDielectric && dielectric.delta()) ||

@@ -21,6 +21,7 @@ enum PathFlags : uint32_t {
   kPathAfterSneeExit = 1u << 2,  // the ray left a medium by an exit SNEE competes with
   kPathLightSkipped = 1u << 3,   // "sla": any light this ray reaches was counted by NEE
   kPathAovOpen = 1u << 4,        // AOVs: the camera ray's specular chain has not ended yet
+  kPathInsideVolume = 1u << 5,   // the ray is inside a closed refracting or null boundary
 };
 
 // X(type, name): one SoA array per field.

@@ -144,6 +144,16 @@ int32_t medium_on_side(const SurfaceInfo& info, Vec3 w, Vec3 n) {
   return dot(w, n) >= 0 ? -1 : info.interior_medium;
 }
 
+// Whether the ray is inside the closed boundary it crosses after a crossing in direction w.
+void track_inside(PathState& state, uint32_t s, const SurfaceInfo& info, Vec3 w, Vec3 n) {
+  if (!info.closed) return;
+  if (dot(w, n) < 0) {
+    state.flags[s] |= kPathInsideVolume;
+  } else {
+    state.flags[s] &= ~kPathInsideVolume;
+  }
+}
+
 bool needs_tracking(const KernelContext& ctx, int32_t medium) {
   return medium >= 0 || ctx.has_null_surfaces;
 }
@@ -222,6 +232,21 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     const Vec3 n{hits.nx[k], hits.ny[k], hits.nz[k]};
     const Vec3 ns{hits.snx[k], hits.sny[k], hits.snz[k]};  // n on flat surfaces
     const SurfaceInfo& info = ctx.surfaces[geom];
+    // A closed boundary reached from the side the ray is not on: the ray grazed it where an
+    // entry and an exit lie within float error of each other (at a silhouette edge), and the
+    // closest hit found was the exit. Taken as a crossing it would be an exit without an
+    // entry (eta^2 too much, FurnaceCrossing.*) or an entry without an exit. The ray crossed
+    // the boundary twice at one point, so it goes on unchanged in its medium, as through a
+    // null boundary; the flight that reached here was weighted like any boundary hit.
+    if (info.closed &&
+        (info.kind == MaterialKind::kDielectric || info.kind == MaterialKind::kNull) &&
+        (dot(d, n) > 0) != ((state.flags[s] & kPathInsideVolume) != 0)) {
+      extend_aov_chain(state, s, state.hit_t[s]);
+      state.set_ray(s, offset_origin(p, n, d, ctx.epsilon), d);
+      state.event[s] += 1;
+      q.extend.push(s);
+      continue;
+    }
     const bool light_skipped = (state.flags[s] & kPathLightSkipped) != 0;
     const bool after_exit = (state.flags[s] & kPathAfterSneeExit) != 0;
 
@@ -245,6 +270,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       // An index-matched boundary only changes the medium; the ray goes on unchanged (and what
       // its last real vertex remembered stays valid).
       state.medium[s] = medium_after_crossing(ctx, geom, d, n);
+      track_inside(state, s, info, d, n);
       extend_aov_chain(state, s, state.hit_t[s]);
       state.set_ray(s, offset_origin(p, n, d, ctx.epsilon), d);
       state.event[s] += 1;
@@ -307,6 +333,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       const float eta2 = info.dielectric.eta * info.dielectric.eta;
       state.eta_scale[s] *= entering ? eta2 : 1.0f / eta2;
       state.medium[s] = medium_on_side(info, wi, n);
+      track_inside(state, s, info, wi, n);
       if (!entering && exit.snee_possible) {
         remember_exit(state, s, exit);
       } else if (!entering && exit.light_handled_elsewhere) {

@@ -31,6 +31,11 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
   if (!device_) throw std::runtime_error("cannot create the Embree device");
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+  // Robust mode selects Embree's watertight (Pluecker) triangle test. The default test is not
+  // watertight: a ray through the edge two triangles share (within about one ulp of it) can miss
+  // both, so a camera ray slipped into the closed bunny unseen and its path exited twice (gained
+  // eta^2), and a ray from inside left it without a crossing (FurnaceCrossing.*).
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
 
   bounds_min_ = Vec3(kInfinity);
   bounds_max_ = Vec3(-kInfinity);
