@@ -97,14 +97,16 @@ TEST(FurnaceCrossing, RaysThroughASharedEdgeHitIt) {
     uint32_t prim_a, prim_b;  // the triangles on either side of the edge
     float t;                  // where the ray crosses the edge (in double)
   };
-  const Case cases[] = {
-      {scene.camera.position, {0.0899156332f, -0.251419514f, -0.963692665f}, 1066, 1106,
-       6.0923030f},
-      {{-0.527013242f, 0.184527099f, -0.0704361647f},
-       {0.0308112949f, -0.281487584f, 0.959070027f},
-       3371,
-       3406,
-       0.52842858f}};
+  const Case cases[] = {{scene.camera.position,
+                         {0.0899156332f, -0.251419514f, -0.963692665f},
+                         1066,
+                         1106,
+                         6.0923030f},
+                        {{-0.527013242f, 0.184527099f, -0.0704361647f},
+                         {0.0308112949f, -0.281487584f, 0.959070027f},
+                         3371,
+                         3406,
+                         0.52842858f}};
   for (const Case& c : cases) {
     float t = 0;
     uint32_t geom = 0, prim = 0;
