@@ -107,7 +107,9 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       epsilon(e.ray_epsilon()),
       camera(camera_frame(s.camera)),
       width(s.camera.width),
-      height(s.camera.height) {
+      height(s.camera.height),
+      pixel_spread(2.0f * image_half_extents(s.camera).y / static_cast<float>(s.camera.height)),
+      textures(s.textures.empty() ? nullptr : std::make_shared<const TextureSet>(s.textures)) {
   media.reserve(s.media.size());
   for (const Medium& m : s.media) media.push_back({m.sigma_s, m.sigma_t(), m.g, true});
   std::vector<int> boundaries(s.media.size(), 0);
@@ -125,6 +127,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                      shape.smooth_shading};
     info.aov_albedo = aov_albedo(info);
     info.closed = shape.closed;
+    info.albedo_texture = mat.albedo_texture;
     surfaces.push_back(info);
     if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
     if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "kernels/bsdf/conductor.h"
@@ -16,6 +17,7 @@
 #include "scene/camera_frame.h"
 #include "scene/embree_scene.h"
 #include "scene/scene.h"
+#include "scene/texture_set.h"
 
 namespace snee {
 
@@ -44,6 +46,9 @@ struct SurfaceInfo {
   // A sphere or a mesh without boundary edges (Shape::closed): a ray is on one side of it, which
   // the path tracks (kPathInsideVolume) for its dielectric and null boundaries.
   bool closed = false;
+  // Diffuse: index into KernelContext::textures whose colour multiplies albedo (and
+  // aov_albedo) at each hit (surface_texture.h); -1 for none.
+  int32_t albedo_texture = -1;
   // A mirror or a smooth dielectric: no light sampling, no AOV vertex.
   bool delta() const {
     return (kind == MaterialKind::kDielectric && dielectric.delta()) ||
@@ -134,6 +139,11 @@ struct KernelContext {
   float epsilon;
   CameraFrame camera;
   int width, height;
+  // The width of one pixel's footprint per unit of distance from the camera, for the texture
+  // footprint of a hit (surface_texture.h).
+  float pixel_spread;
+  // The scene's textures; null when it has none.
+  std::shared_ptr<const TextureSet> textures;
 };
 
 }  // namespace snee

@@ -14,6 +14,7 @@
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/slot_chunk.h"
 #include "kernels/stages.h"
+#include "kernels/surface_texture.h"
 
 namespace snee {
 
@@ -231,7 +232,9 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     const uint32_t geom = state.hit_geom[s];
     const Vec3 n{hits.nx[k], hits.ny[k], hits.nz[k]};
     const Vec3 ns{hits.snx[k], hits.sny[k], hits.snz[k]};  // n on flat surfaces
-    const SurfaceInfo& info = ctx.surfaces[geom];
+    SurfaceInfo textured;
+    const SurfaceInfo& info = textured_surface(ctx, ctx.surfaces[geom], geom, state.hit_prim[s], p,
+                                               state.hit_t[s], textured);
     // A closed boundary reached from the side the ray is not on: the ray grazed it where an
     // entry and an exit lie within float error of each other (at a silhouette edge), and the
     // closest hit found was the exit. Taken as a crossing it would be an exit without an

@@ -7,10 +7,13 @@
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <map>
+#include <tuple>
 
 #include "scene/input_file.h"
 #include "scene/mesh_topology.h"
 #include "scene/metals.h"
+#include "scene/rgb_image_io.h"
 #include "scene/scene_error.h"
 
 namespace snee {
@@ -52,8 +55,9 @@ class GltfReader {
     asset_.warnings.push_back(path_ + ": " + element + ": " + message);
   }
 
-  // The file and every external buffer go through read_input_file (regular files only, within
-  // the budget); images are never decoded, since nothing of them is used yet.
+  // The file and every external buffer or image go through read_input_file (regular files
+  // only, within the budget). An image's bytes are kept as they are (in tinygltf::Image::image)
+  // and decoded by rgb_image_io.h only if a material uses it as a texture.
   void load_model() {
     const std::string bytes = read_input_file(path_, "glTF file", budget_);
     tinygltf::TinyGLTF loader;
@@ -82,9 +86,13 @@ class GltfReader {
     };
     fs_callbacks.user_data = const_cast<MemoryBudget*>(&budget_);
     loader.SetFsCallbacks(fs_callbacks);
-    loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                             const unsigned char*, int, void*) { return true; },
-                          nullptr);
+    loader.SetImageLoader(
+        [](tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+           const unsigned char* data, int size, void*) {
+          image->image.assign(data, data + size);
+          return true;
+        },
+        nullptr);
     std::string error, warning;
     const std::string base_dir = fs::path(path_).parent_path().string();
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -181,6 +189,77 @@ class GltfReader {
     return std::clamp(1.0f - s * s, 0.0f, 1.0f);
   }
 
+  // The decoded image of a material's texture, as an index into GltfAsset::textures. glTF
+  // stores base colour textures sRGB-encoded, as rgb_image_io.h takes 8- and 16-bit images.
+  int texture_image(const tinygltf::TextureInfo& info, const std::string& where) {
+    if (info.texCoord != 0) {
+      fail(where, "texCoord " + std::to_string(info.texCoord) +
+                      ": snee reads only the first set of texture coordinates (TEXCOORD_0)");
+    }
+    if (info.index < 0 || static_cast<size_t>(info.index) >= model_.textures.size()) {
+      fail(where, "index " + std::to_string(info.index) + " names no texture (the file has " +
+                      std::to_string(model_.textures.size()) + ")");
+    }
+    if (info.extensions.count("KHR_texture_transform") > 0) {
+      warn(where, "KHR_texture_transform is ignored; the texture coordinates are used as given");
+    }
+    const std::string texture_element = indexed("textures", static_cast<size_t>(info.index));
+    const tinygltf::Texture& texture = model_.textures[static_cast<size_t>(info.index)];
+    if (texture.source < 0 || static_cast<size_t>(texture.source) >= model_.images.size()) {
+      fail(texture_element,
+           "has no source image snee can read (images in extensions such as "
+           "KHR_texture_basisu are not read)");
+    }
+    Texture out;
+    if (texture.sampler >= 0) {
+      if (static_cast<size_t>(texture.sampler) >= model_.samplers.size()) {
+        fail(texture_element, "sampler " + std::to_string(texture.sampler) +
+                                  " names no sampler (the file has " +
+                                  std::to_string(model_.samplers.size()) + ")");
+      }
+      const tinygltf::Sampler& sampler = model_.samplers[static_cast<size_t>(texture.sampler)];
+      out.wrap_u = wrap_mode(sampler.wrapS);
+      out.wrap_v = wrap_mode(sampler.wrapT);
+    }
+    const auto image_index = static_cast<size_t>(texture.source);
+    const std::tuple key{image_index, out.wrap_u, out.wrap_v};
+    const auto cached = texture_of_image_.find(key);
+    if (cached != texture_of_image_.end()) return cached->second;
+    const tinygltf::Image& image = model_.images[image_index];
+    const std::string image_element = indexed("images", image_index);
+    // The name stands for the image in messages, and its extension tells OpenImageIO the format.
+    std::string name = path_ + ": " + image_element;
+    if (!image.uri.empty() && !image.uri.starts_with("data:")) {
+      name = (fs::path(path_).parent_path() / image.uri).lexically_normal().string();
+    } else if (image.mimeType == "image/png" || image.uri.starts_with("data:image/png")) {
+      name += ".png";
+    } else if (image.mimeType == "image/jpeg" || image.uri.starts_with("data:image/jpeg")) {
+      name += ".jpg";
+    }
+    try {
+      out.image = decode_rgb_image(std::string(image.image.begin(), image.image.end()), name,
+                                   "texture", budget_);
+    } catch (const SceneError& e) {
+      fail(texture_element, e.what());
+    }
+    asset_.textures.push_back(std::move(out));
+    const int index = static_cast<int>(asset_.textures.size() - 1);
+    texture_of_image_[key] = index;
+    return index;
+  }
+
+  // tinygltf gives the GL enum, and -1 where the sampler leaves it to the default (REPEAT).
+  static TextureWrap wrap_mode(int gl) {
+    switch (gl) {
+      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+        return TextureWrap::kMirror;
+      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+        return TextureWrap::kClamp;
+      default:
+        return TextureWrap::kRepeat;
+    }
+  }
+
   void read_material(size_t index) {
     const tinygltf::Material& m = model_.materials[index];
     const std::string element = indexed("materials", index);
@@ -194,9 +273,11 @@ class GltfReader {
     }
     check_unit(pbr_path + ".metallicFactor", pbr.metallicFactor);
     check_unit(pbr_path + ".roughnessFactor", pbr.roughnessFactor);
-    if (pbr.baseColorTexture.index >= 0 || pbr.metallicRoughnessTexture.index >= 0 ||
-        m.normalTexture.index >= 0 || m.emissiveTexture.index >= 0) {
-      warn(element, "textures are ignored (snee has none yet); the constant factors are used");
+    if (pbr.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
+        m.emissiveTexture.index >= 0 || m.occlusionTexture.index >= 0) {
+      warn(element,
+           "metallic-roughness, normal, emissive and occlusion textures are ignored (snee reads "
+           "only base colour textures of diffuse materials); the constant factors are used");
     }
     const Rgb base_color = factor_rgb(pbr.baseColorFactor, Rgb(1.0f));
     const float alpha = static_cast<float>(pbr.roughnessFactor * pbr.roughnessFactor);
@@ -272,6 +353,11 @@ class GltfReader {
       out.surface.conductor_eta = ior.eta;
       out.surface.conductor_k = ior.k;
       out.surface.roughness = alpha;
+      if (pbr.baseColorTexture.index >= 0) {
+        warn(element,
+             "the base colour texture of a metal is ignored (snee's conductors have one "
+             "colour); baseColorFactor is used");
+      }
     } else {
       if (pbr.metallicFactor > 0) {
         warn(element, "metallicFactor " + std::to_string(pbr.metallicFactor) +
@@ -280,6 +366,10 @@ class GltfReader {
       }
       out.surface.kind = MaterialKind::kDiffuse;
       out.surface.albedo = base_color;
+      if (pbr.baseColorTexture.index >= 0) {
+        out.surface.albedo_texture =
+            texture_image(pbr.baseColorTexture, pbr_path + ".baseColorTexture");
+      }
     }
     for (size_t i = 0; i < m.emissiveFactor.size(); ++i) {
       check_unit(element + ".emissiveFactor[" + std::to_string(i) + "]", m.emissiveFactor[i]);
@@ -731,6 +821,8 @@ class GltfReader {
   MemoryBudget budget_;
   tinygltf::Model model_;
   GltfAsset asset_;
+  // (glTF image index, wrap modes) -> index into asset_.textures
+  std::map<std::tuple<size_t, TextureWrap, TextureWrap>, int> texture_of_image_;
   std::vector<bool> visited_;
   int default_material_ = -1;
 };

@@ -1,7 +1,8 @@
 // Reading glTF 2.0 assets (.gltf with embedded or external buffers, and binary .glb) into snee's
 // scene description: the default scene's node hierarchy with its transforms, triangle meshes
 // (positions, indices, normals and texture coordinates), the first camera, KHR_lights_punctual
-// lights and materials translated to snee's (docs/scene-format.md has the table). Nothing here
+// lights and materials translated to snee's with their base colour textures (docs/scene-format.md
+// has the table). Nothing here
 // knows the JSON scene that includes the asset; scene_loader.cpp applies its overrides.
 // Every failure is a SceneError "<file>: <glTF element>: <what is wrong>", e.g.
 // "a.gltf: meshes[2].primitives[0]: the POSITION accessor 7 reaches past its buffer view".
@@ -21,7 +22,7 @@ namespace snee {
 struct GltfMaterial {
   std::string name;     // the material's name, or its element ("materials[3]") when unnamed
   std::string element;  // "materials[3]", or "default material" for primitives without one
-  Material surface;
+  Material surface;     // albedo_texture indexes GltfAsset::textures
   std::optional<Medium> interior;  // KHR_materials_volume with a thickness, else none
   Rgb emission{0.0f};              // emissiveFactor times KHR_materials_emissive_strength
 };
@@ -36,6 +37,7 @@ struct GltfPrimitive {
 
 struct GltfAsset {
   std::vector<GltfMaterial> materials;
+  std::vector<Texture> textures;  // decoded images, each once per sampler wrapping it
   std::vector<GltfPrimitive> primitives;
   std::vector<Light> lights;
   std::optional<Camera> camera;  // the first perspective camera met walking the scene

@@ -24,14 +24,14 @@ Rgb sky_radiance(Vec3 d) {
 
 }  // namespace
 
-EnvImage make_soft_sky(int width, int height) {
-  EnvImage image;
+RgbImage make_soft_sky(int width, int height) {
+  RgbImage image;
   image.width = width;
   image.height = height;
   image.source = "procedural soft sky";
   image.pixels.resize(static_cast<size_t>(width) * height);
   for (int y = 0; y < height; ++y) {
-    // Inverse of EnvImage's mapping at the pixel centre: v = theta / pi, u = phi / (2 pi) + 0.5
+    // Inverse of RgbImage's mapping at the pixel centre: v = theta / pi, u = phi / (2 pi) + 0.5
     // with phi = atan2(d.x, -d.z).
     const float theta = kPi * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
     for (int x = 0; x < width; ++x) {

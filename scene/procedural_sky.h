@@ -7,7 +7,7 @@
 namespace snee {
 
 // Blue sky fading to a warm horizon, dark ground, and a broad soft bright lobe (an overcast sun)
-// high in the front-left; about 0.1 to 3 in radiance. Follows EnvImage's direction convention.
-EnvImage make_soft_sky(int width, int height);
+// high in the front-left; about 0.1 to 3 in radiance. Follows RgbImage's direction convention.
+RgbImage make_soft_sky(int width, int height);
 
 }  // namespace snee

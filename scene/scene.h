@@ -73,6 +73,10 @@ struct Material {
   float roughness = 0.0f;   // dielectric and conductor: GGX alpha
   Rgb conductor_eta{0.0f};  // conductor: complex index eta + i k relative to the exterior
   Rgb conductor_k{1.0f};
+  // Diffuse and diffuse transmitter: index into Scene::textures whose colour, looked up at the
+  // hit's texture coordinates, multiplies `albedo`; -1 for none. Only meshes with texture
+  // coordinates may carry such a material (the loader checks).
+  int albedo_texture = -1;
 };
 
 // Homogeneous participating medium; coefficients per scene unit.
@@ -84,14 +88,18 @@ struct Medium {
   Rgb sigma_t() const { return sigma_s + sigma_a; }
 };
 
+// Texture coordinates in image terms, as glTF and OpenImageIO have them: u runs right, v down,
+// (0, 0) is the top-left corner of the image's first pixel and (1, 1) the bottom-right corner of
+// its last; outside [0, 1) a texture repeats, mirrors or clamps (Texture). OBJ's v runs up and
+// is flipped when read.
 struct Uv {
   float u = 0, v = 0;
 };
 
 // World-space triangle mesh with outward-facing winding (counter-clockwise seen from outside).
 // Normals and texture coordinates, where the file has them, are one per position; normals are
-// interpolated for smooth shading (Shape::smooth_shading), texture coordinates are kept for
-// textures, which the kernels do not use yet.
+// interpolated for smooth shading (Shape::smooth_shading), texture coordinates for textures
+// (Material::albedo_texture).
 struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<uint32_t> indices;  // 3 per triangle
@@ -128,15 +136,23 @@ enum class LightKind : uint8_t {
   kArea,         // emissive shape (Shape::emission), referenced by index
 };
 
-// Lat-long environment image in linear RGB. Direction convention (y up):
-// u = (atan2(d.x, -d.z) / (2 pi) + 0.5), v = acos(d.y) / pi; pixel (0,0) is at u=0, v=0 (top).
-// The image centre looks along -z: Mitsuba 3's envmap turned 180 degrees about y
-// (docs/lights.md, which also says how lookups filter).
-struct EnvImage {
+// An image in linear RGB: a lat-long environment map or a texture. Environment direction
+// convention (y up): u = (atan2(d.x, -d.z) / (2 pi) + 0.5), v = acos(d.y) / pi; pixel (0,0) is at
+// u=0, v=0 (top). The image centre looks along -z: Mitsuba 3's envmap turned 180 degrees about y
+// (docs/lights.md, which also says how lookups filter). Textures: Uv below.
+struct RgbImage {
   int width = 0;
   int height = 0;
   std::vector<Rgb> pixels;  // row-major, top row first
   std::string source;
+};
+
+// How a texture continues outside [0, 1) along one axis (glTF's sampler wrap modes).
+enum class TextureWrap : uint8_t { kRepeat, kMirror, kClamp };
+
+struct Texture {
+  RgbImage image;
+  TextureWrap wrap_u = TextureWrap::kRepeat, wrap_v = TextureWrap::kRepeat;
 };
 
 struct Light {
@@ -174,7 +190,8 @@ struct Scene {
   std::vector<Medium> media;
   std::vector<Shape> shapes;
   std::vector<Light> lights;
-  std::vector<EnvImage> env_images;
+  std::vector<RgbImage> env_images;
+  std::vector<Texture> textures;  // Material::albedo_texture
   RenderSettings render;
 };
 

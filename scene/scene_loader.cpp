@@ -6,7 +6,6 @@
 #include <map>
 
 #include "scene/camera_frame.h"
-#include "scene/env_image_io.h"
 #include "scene/gltf_reader.h"
 #include "scene/input_file.h"
 #include "scene/json_reader.h"
@@ -14,6 +13,7 @@
 #include "scene/mesh_topology.h"
 #include "scene/metals.h"
 #include "scene/procedural_sky.h"
+#include "scene/rgb_image_io.h"
 #include "scene/volume_overlap.h"
 
 namespace snee {
@@ -135,7 +135,7 @@ bool is_rotation(const Transform& t) {
 }
 
 // An environment light's radiance is its scale times the image's pixels.
-void check_scaled_image(const EnvImage& image, Rgb scale, const JsonValue& where) {
+void check_scaled_image(const RgbImage& image, Rgb scale, const JsonValue& where) {
   Rgb brightest(0.0f);
   for (const Rgb& pixel : image.pixels) brightest = vmax(brightest, pixel);
   const Rgb product = scale * brightest;
@@ -433,10 +433,13 @@ class SceneReader {
       }
       canonical[list] = canonical_overrides;
     }
+    const int first_texture = static_cast<int>(out_.scene.textures.size());
+    for (Texture& texture : asset.textures) out_.scene.textures.push_back(std::move(texture));
     for (size_t i = 0; i < asset.materials.size(); ++i) {
       GltfMaterial& m = asset.materials[i];
       if (materials[i] < 0) {
         m.surface.name = prefix + m.name;
+        if (m.surface.albedo_texture >= 0) m.surface.albedo_texture += first_texture;
         out_.scene.materials.push_back(m.surface);
         materials[i] = static_cast<int>(out_.scene.materials.size() - 1);
       }
@@ -464,6 +467,11 @@ class SceneReader {
       shape.closed = edges.boundary == 0;
       if (shape.closed && signed_volume(shape.mesh) < 0) flip_winding(shape.mesh);
       shape.material = materials[primitive.material];
+      if (out_.scene.materials[shape.material].albedo_texture >= 0 && shape.mesh.uvs.empty()) {
+        value.fail("the material '" + out_.scene.materials[shape.material].name + "' of " +
+                   shape.source +
+                   " has a texture, but the primitive has no texture coordinates (TEXCOORD_0)");
+      }
       shape.interior_medium = media[primitive.material];
       shape.emission = asset.materials[primitive.material].emission;
       if (shape.interior_medium >= 0) {
@@ -562,17 +570,40 @@ class SceneReader {
     return name;
   }
 
+  // The texture read from `file`, read once however many materials use it; `where` is the JSON
+  // value naming it.
+  int add_texture(const JsonValue& where, const std::string& file) {
+    const auto it = texture_files_.find(file);
+    if (it != texture_files_.end()) return it->second;
+    try {
+      out_.scene.textures.push_back({read_rgb_image(file, "texture", budget_)});
+    } catch (const SceneError& e) {
+      where.fail(e.what());
+    }
+    const int index = static_cast<int>(out_.scene.textures.size() - 1);
+    texture_files_[file] = index;
+    return index;
+  }
+
   int add_material(const JsonValue& value, bool top_level) {
     const std::string type = value.member("type").choice(
         {"diffuse", "dielectric", "null", "conductor", "diffuse_transmission"});
     Material material;
     json canonical;
     if (type == "diffuse") {
-      const JsonObject obj = value.object({"name", "type", "albedo"});
+      const JsonObject obj = value.object({"name", "type", "albedo", "albedo_texture"});
       material.name = unique_name(obj, top_level, material_names_, "material");
       material.kind = MaterialKind::kDiffuse;
+      const std::optional<JsonValue> texture = obj.optional("albedo_texture");
+      // With a texture, albedo is a factor on it (glTF's baseColorFactor), white by default.
+      if (texture) material.albedo = Rgb(1.0f);
       if (auto albedo = obj.optional("albedo")) material.albedo = albedo->rgb(kUnitInterval);
       canonical = {{"albedo", to_json(material.albedo)}};
+      if (texture) {
+        const ResolvedPath file = resolve(texture->string());
+        material.albedo_texture = add_texture(*texture, file.file);
+        canonical["albedo_texture"] = file.canonical;
+      }
     } else if (type == "dielectric") {
       const JsonObject obj = value.object({"name", "type", "ior", "roughness"});
       material.name = unique_name(obj, top_level, material_names_, "material");
@@ -808,6 +839,8 @@ class SceneReader {
       const float hw = 0.5f * width, hd = 0.5f * depth;
       shape.mesh.positions = {{-hw, 0, -hd}, {-hw, 0, hd}, {hw, 0, hd}, {hw, 0, -hd}};
       shape.mesh.indices = {0, 1, 2, 0, 2, 3};
+      // Seen from the front with -z up the image, as a texture lies on the quad.
+      shape.mesh.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
       apply_transform(transform, shape.mesh);
       check_mesh_coordinates(shape.mesh, value, "the quad");
       shape.name = "quad";
@@ -828,6 +861,14 @@ class SceneReader {
 
     shape.material = reference(obj.required("material"), true);
     canonical["material"] = out_.scene.materials[shape.material].name;
+    if (out_.scene.materials[shape.material].albedo_texture >= 0 && shape.mesh.uvs.empty()) {
+      obj.required("material")
+          .fail("the material '" + out_.scene.materials[shape.material].name +
+                "' has a texture, but the " +
+                (shape.kind == ShapeKind::kSphere ? std::string("sphere")
+                                                  : "mesh '" + shape.source + "'") +
+                " has no texture coordinates to look it up with");
+    }
     if (auto medium = obj.optional("medium")) {
       shape.interior_medium = reference(*medium, false);
       canonical["medium"] = out_.scene.media[shape.interior_medium].name;
@@ -991,6 +1032,7 @@ class SceneReader {
   std::vector<std::string> shape_places_;              // shape index -> JSON path or glTF element
   std::map<std::string, std::string> material_names_;  // name -> JSON path of its definition
   std::map<std::string, std::string> medium_names_;
+  std::map<std::string, int> texture_files_;  // file -> index into Scene::textures
   json canonical_ = json::object();
   json canonical_materials_ = json::array();
   json canonical_media_ = json::array();

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/env_image_io.h"
+#include "scene/rgb_image_io.h"
 #include "scene/scene_error.h"
 #include "tests/support/exr_reproducers.h"
 #include "tests/support/test_directory.h"
@@ -133,7 +133,7 @@ std::string error_of(const std::string& path, const MemoryBudget& budget = {}) {
 TEST_F(EnvImageIoTest, FloatExrIsLinearAndKeepsFirstThreeChannels) {
   const std::vector<float> rgba = {0.5f, 2.0f, 100.0f, 0.1f, 0.0f, 0.25f, 7.0f, 1.0f,
                                    1.0f, 3.0f, 0.125f, 0.3f, 4.0f, 5.0f,  6.0f, 0.0f};
-  const EnvImage image =
+  const RgbImage image =
       read_env_image(write_image("rgba.exr", 2, 2, 4, OIIO::TypeDesc::FLOAT, rgba));
   ASSERT_EQ(image.width, 2);
   ASSERT_EQ(image.height, 2);
@@ -145,7 +145,7 @@ TEST_F(EnvImageIoTest, FloatExrIsLinearAndKeepsFirstThreeChannels) {
 
 TEST_F(EnvImageIoTest, OneChannelBecomesGrey) {
   const std::vector<float> grey = {0.25f, 8.0f, 1.5f};
-  const EnvImage image =
+  const RgbImage image =
       read_env_image(write_image("grey.exr", 3, 1, 1, OIIO::TypeDesc::FLOAT, grey));
   EXPECT_EQ(image.pixels[1], Rgb(8.0f));
   EXPECT_EQ(image.pixels[2], Rgb(1.5f));
@@ -153,7 +153,7 @@ TEST_F(EnvImageIoTest, OneChannelBecomesGrey) {
 
 TEST_F(EnvImageIoTest, EightBitPngIsSrgbDecoded) {
   const std::vector<unsigned char> rgb = {0, 128, 255, 255, 255, 255};
-  const EnvImage image =
+  const RgbImage image =
       read_env_image(write_image("srgb.png", 2, 1, 3, OIIO::TypeDesc::UINT8, rgb));
   EXPECT_EQ(image.pixels[0].x, 0.0f);
   // sRGB 128/255 = 0.50196 decodes to ((0.50196 + 0.055) / 1.055)^2.4 = 0.21586.
@@ -164,7 +164,7 @@ TEST_F(EnvImageIoTest, EightBitPngIsSrgbDecoded) {
 
 TEST_F(EnvImageIoTest, RadianceHdrIsLinear) {
   const std::vector<float> rgb = {1.0f, 0.5f, 4.0f};
-  const EnvImage image =
+  const RgbImage image =
       read_env_image(write_image("sky.hdr", 1, 1, 3, OIIO::TypeDesc::FLOAT, rgb));
   // RGBE keeps 8 mantissa bits per channel relative to the largest.
   EXPECT_NEAR(image.pixels[0].x, 1.0f, 0.02f);
@@ -193,7 +193,7 @@ TEST_F(EnvImageIoTest, ErrorsNameTheFile) {
 TEST_F(EnvImageIoTest, CommonFormatsLoad) {
   const std::vector<unsigned char> rgb = {10, 20, 30, 40, 50, 60};
   for (const char* name : {"sky.tif", "sky.jpg", "sky.bmp", "sky.tga"}) {
-    const EnvImage image = read_env_image(write_image(name, 2, 1, 3, OIIO::TypeDesc::UINT8, rgb));
+    const RgbImage image = read_env_image(write_image(name, 2, 1, 3, OIIO::TypeDesc::UINT8, rgb));
     EXPECT_EQ(image.width, 2) << name;
     EXPECT_GT(image.pixels[1].z, image.pixels[0].x) << name;
   }
@@ -256,7 +256,7 @@ TEST_F(EnvImageIoTest, RowsPerStripBeyondTheImageSizesNoBuffer) {
     const std::string name = "rps" + std::to_string(rows_per_strip);
     const std::string valid = (dir_ / (name + ".tif")).string();
     std::ofstream(valid, std::ios::binary) << deflate_tiff(4, 3, rows_per_strip, true);
-    const EnvImage image = read_env_image(valid);
+    const RgbImage image = read_env_image(valid);
     ASSERT_EQ(image.pixels.size(), 12u) << valid;
     const float expected = std::pow((128.0f / 255.0f + 0.055f) / 1.055f, 2.4f);
     for (const Rgb& p : image.pixels) EXPECT_FLOAT_EQ(p.y, expected) << valid;
@@ -286,7 +286,7 @@ TEST_F(EnvImageIoTest, TiledImagesReadRowsOfTiles) {
     out->close();
     ASSERT_GT(OIIO::ImageInput::open(path)->spec().tile_width, 0) << path;
 
-    const EnvImage image = read_env_image(path);
+    const RgbImage image = read_env_image(path);
     ASSERT_EQ(image.pixels.size(), static_cast<size_t>(kWidth * kHeight)) << path;
     for (size_t i = 0; i < image.pixels.size(); ++i) {
       ASSERT_EQ(image.pixels[i].x, rgb[3 * i]) << path << " pixel " << i;

@@ -551,7 +551,15 @@ TEST(GltfSampleAsset, BoxTexturedLoadsAsGltfAndGlb) {
   if (!fs::exists(gltf) || !fs::exists(glb_file)) {
     GTEST_SKIP() << "assimp-testmodels is not installed (" << gltf << ")";
   }
-  for (const fs::path& file : {gltf, glb_file}) {
+  struct Sample {
+    fs::path file;
+    TextureWrap wrap_u, wrap_v;
+  };
+  // The two files disagree on the sampler: the .gltf asks for MIRRORED_REPEAT across and
+  // CLAMP_TO_EDGE down, the .glb for REPEAT both ways.
+  const Sample samples[] = {{gltf, TextureWrap::kMirror, TextureWrap::kClamp},
+                            {glb_file, TextureWrap::kRepeat, TextureWrap::kRepeat}};
+  for (const auto& [file, wrap_u, wrap_v] : samples) {
     const GltfAsset asset = load_gltf(file.string(), Transform());
     ASSERT_EQ(asset.primitives.size(), 1u) << file;
     const TriangleMesh& mesh = asset.primitives[0].mesh;
@@ -561,6 +569,14 @@ TEST(GltfSampleAsset, BoxTexturedLoadsAsGltfAndGlb) {
     EXPECT_EQ(mesh.uvs.size(), 24u);
     ASSERT_EQ(asset.materials.size(), 1u);
     EXPECT_EQ(asset.materials[0].surface.kind, MaterialKind::kDiffuse);
+    // Its base colour texture, CesiumLogoFlat.png (an external file for .gltf, a buffer view
+    // of the .glb).
+    EXPECT_EQ(asset.materials[0].surface.albedo_texture, 0) << file;
+    ASSERT_EQ(asset.textures.size(), 1u) << file;
+    EXPECT_EQ(asset.textures[0].image.width, 211) << file;
+    EXPECT_EQ(asset.textures[0].image.height, 211) << file;
+    EXPECT_EQ(asset.textures[0].wrap_u, wrap_u) << file;
+    EXPECT_EQ(asset.textures[0].wrap_v, wrap_v) << file;
     const Scene scene =
         load_scene_json({{"camera", {{"position", {0, 0, 3}}, {"look_at", {0, 0, 0}}}},
                          {"include", {{{"file", file.string()}}}}},
@@ -568,6 +584,8 @@ TEST(GltfSampleAsset, BoxTexturedLoadsAsGltfAndGlb) {
             .scene;
     ASSERT_EQ(scene.shapes.size(), 1u);
     EXPECT_TRUE(scene.shapes[0].closed) << file;
+    ASSERT_EQ(scene.textures.size(), 1u) << file;
+    EXPECT_EQ(scene.materials[static_cast<size_t>(scene.shapes[0].material)].albedo_texture, 0);
   }
 }
 

@@ -191,15 +191,15 @@ Vec3 map_direction(float u, float v) {
   return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
 }
 
-// The EnvImage convention of scene.h, inverted.
+// The RgbImage convention of scene.h, inverted.
 Vec2 map_uv(Vec3 m) {
   return {static_cast<float>(std::atan2(m.x, -m.z) / (2 * M_PI) + 0.5),
           static_cast<float>(std::acos(std::clamp(m.y, -1.0f, 1.0f)) / M_PI)};
 }
 
 // A coloured gradient plus a bright blob; every pixel well above the sampling floor.
-EnvImage procedural_env() {
-  EnvImage image;
+RgbImage procedural_env() {
+  RgbImage image;
   image.width = kEnvWidth;
   image.height = kEnvHeight;
   const Vec3 blob = map_direction(0.7f, 0.3f);
@@ -553,7 +553,7 @@ TEST(Lights, EnvMapLookupIsBilinear) {
 // light sampling must reach every direction that has radiance (escaped_pdf > 0 there).
 TEST(Lights, EnvMapSamplesWhereverTheFilteredRadianceIsNonZero) {
   Scene scene;
-  EnvImage image;
+  RgbImage image;
   image.width = 8;
   image.height = 4;
   image.pixels.assign(32, Rgb(0.0f));

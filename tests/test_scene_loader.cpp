@@ -1129,7 +1129,7 @@ TEST(BuiltinScenes, DefaultBunnyStandsOnTheFloor) {
 TEST(BuiltinScenes, ProceduralSkyIsLowFrequencyAndBrightAbove) {
   const Scene s = load_builtin_scene("sphere-env-smooth").scene;
   ASSERT_EQ(s.env_images.size(), 1u);
-  const EnvImage& sky = s.env_images[0];
+  const RgbImage& sky = s.env_images[0];
   ASSERT_EQ(sky.width, 128);
   ASSERT_EQ(sky.height, 64);
   float brightest = 0;

@@ -18,7 +18,7 @@ bool is_escaping(LightKind kind) {
   return kind == LightKind::kCone || kind == LightKind::kConstantEnv || kind == LightKind::kEnvMap;
 }
 
-// The lat-long convention of EnvImage (scene.h), in map space.
+// The lat-long convention of RgbImage (scene.h), in map space.
 Vec2 map_direction_to_uv(Vec3 m) {
   return {std::atan2(m.x, -m.z) / (2.0f * kPi) + 0.5f, safe_acos(m.y) * kInvPi};
 }
@@ -32,7 +32,7 @@ Vec3 uv_to_map_direction(Vec2 uv) {
 // Bilinear interpolation between pixel centres, at ((x + 1/2) / width, (y + 1/2) / height):
 // u wraps around (the map is periodic in longitude), v clamps to the first and last rows
 // (within half a pixel of a pole the value is the row's own).
-Rgb env_bilinear(const EnvImage& image, Vec2 uv) {
+Rgb env_bilinear(const RgbImage& image, Vec2 uv) {
   const float fx = uv.x * static_cast<float>(image.width) - 0.5f;
   const float fy = std::clamp(uv.y * static_cast<float>(image.height) - 0.5f, 0.0f,
                               static_cast<float>(image.height - 1));
@@ -51,7 +51,7 @@ Rgb env_bilinear(const EnvImage& image, Vec2 uv) {
 
 // Whether the bilinear lookup can be non-zero somewhere in pixel (x, y): it blends that pixel
 // with its neighbours (u wrapping, v clamped).
-bool env_pixel_lit(const EnvImage& image, const std::vector<float>& lum, int x, int y) {
+bool env_pixel_lit(const RgbImage& image, const std::vector<float>& lum, int x, int y) {
   for (int dy = -1; dy <= 1; ++dy) {
     const int yy = std::clamp(y + dy, 0, image.height - 1);
     for (int dx = -1; dx <= 1; ++dx) {
@@ -71,7 +71,7 @@ Transform inverse_rotation(const Transform& r) {
   return t;
 }
 
-Distribution2D env_distribution(const EnvImage& image) {
+Distribution2D env_distribution(const RgbImage& image) {
   const size_t count = static_cast<size_t>(image.width) * image.height;
   std::vector<float> lum(count);
   double sum = 0;
@@ -122,7 +122,7 @@ double scene_radius(const Scene& scene) {
 
 // Mean luminance of an environment image over the sphere of directions (pixels weighted by
 // the solid angle of their row).
-double env_mean_luminance(const EnvImage& image) {
+double env_mean_luminance(const RgbImage& image) {
   double sum = 0, solid_angle = 0;
   for (int y = 0; y < image.height; ++y) {
     const double sin_theta = std::sin((y + 0.5) * M_PI / image.height);

@@ -79,7 +79,7 @@ class LightTable {
     float total_area = 0;
   };
   struct EnvMap {
-    const EnvImage* image = nullptr;
+    const RgbImage* image = nullptr;
     Distribution2D distribution;  // luminance * sin(theta), with a floor for dim pixels
     Transform to_world, to_map;
   };

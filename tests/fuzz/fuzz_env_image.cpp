@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "scene/env_image_io.h"
+#include "scene/rgb_image_io.h"
 #include "scene/scene_error.h"
 #include "tests/fuzz/input_file.h"
 

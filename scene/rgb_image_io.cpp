@@ -1,4 +1,4 @@
-#include "scene/env_image_io.h"
+#include "scene/rgb_image_io.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -34,14 +34,14 @@ bool is_srgb_encoded(const OIIO::ImageSpec& spec) {
 // decoded_what and decoded_bytes describe the float pixels and the image made from them, already
 // checked against the budget; a row of tiles is read while they are held.
 std::vector<float> decode_as_float(OIIO::ImageInput& input, const std::string& path,
-                                   const MemoryBudget& budget, const std::string& decoded_what,
-                                   uint64_t decoded_bytes) {
+                                   std::string_view what, const MemoryBudget& budget,
+                                   const std::string& decoded_what, uint64_t decoded_bytes) {
   const OIIO::ImageSpec& spec = input.spec();
   const size_t row_values = static_cast<size_t>(spec.width) * spec.nchannels;
   std::vector<float> data(row_values * spec.height);
   const auto fail = [&](int row) {
-    return SceneError(path + ": cannot decode environment image at row " + std::to_string(row) +
-                      ": " + input.geterror());
+    return SceneError(path + ": cannot decode " + std::string(what) + " at row " +
+                      std::to_string(row) + ": " + input.geterror());
   };
   if (spec.tile_width <= 0) {
     for (int row = 0; row < spec.height; ++row) {
@@ -77,32 +77,30 @@ std::vector<float> decode_as_float(OIIO::ImageInput& input, const std::string& p
 
 }  // namespace
 
-EnvImage read_env_image(const std::string& path, const MemoryBudget& budget) {
-  // OpenImageIO reads the bytes from memory, so it sees exactly the file that was checked to
-  // be a regular one and never opens a FIFO or a device itself.
-  const std::string bytes = read_input_file(path, "environment image", budget);
+RgbImage decode_rgb_image(const std::string& bytes, const std::string& path, std::string_view what,
+                          const MemoryBudget& budget) {
   // OpenEXR would allocate what an attribute's size claims before reading it.
   check_exr_header(bytes, path);
   OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
   auto input = OIIO::ImageInput::open(path, nullptr, &memory);
   if (!input) {
-    throw SceneError(path + ": cannot read environment image: " + OIIO::geterror());
+    throw SceneError(path + ": cannot read " + std::string(what) + ": " + OIIO::geterror());
   }
   const OIIO::ImageSpec spec = input->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
-    throw SceneError(path + ": the environment image is empty");
+    throw SceneError(path + ": the " + std::string(what) + " is empty");
   }
   // read_image cannot read deep pixels into a flat buffer and would fail with a message about
   // its own internals.
   if (spec.deep) {
-    throw SceneError(path +
-                     ": the environment image is a deep image (a list of samples per pixel; "
+    throw SceneError(path + ": the " + std::string(what) +
+                     " is a deep image (a list of samples per pixel; "
                      "expected a flat image)");
   }
   // read_image would write every slice of a volume into a buffer sized for one.
   if (spec.depth != 1) {
-    throw SceneError(path + ": the environment image is a volume of " + std::to_string(spec.depth) +
-                     " slices (expected a flat image)");
+    throw SceneError(path + ": the " + std::string(what) + " is a volume of " +
+                     std::to_string(spec.depth) + " slices (expected a flat image)");
   }
   const int channels = spec.nchannels;
   const uint64_t pixels =
@@ -118,10 +116,10 @@ EnvImage read_env_image(const std::string& path, const MemoryBudget& budget) {
     throw SceneError(path + ": " + budget.exceeded(decoded_what, decoded_bytes));
   }
   const std::vector<float> data =
-      decode_as_float(*input, path, budget, decoded_what, decoded_bytes);
+      decode_as_float(*input, path, what, budget, decoded_what, decoded_bytes);
   const bool srgb = is_srgb_encoded(spec);
 
-  EnvImage image;
+  RgbImage image;
   image.width = spec.width;
   image.height = spec.height;
   image.source = path;
@@ -138,6 +136,17 @@ EnvImage read_env_image(const std::string& path, const MemoryBudget& budget) {
     image.pixels[i] = vmax(c, Rgb(0.0f));
   }
   return image;
+}
+
+RgbImage read_rgb_image(const std::string& path, std::string_view what,
+                        const MemoryBudget& budget) {
+  // OpenImageIO reads the bytes from memory, so it sees exactly the file that was checked to
+  // be a regular one and never opens a FIFO or a device itself.
+  return decode_rgb_image(read_input_file(path, what, budget), path, what, budget);
+}
+
+RgbImage read_env_image(const std::string& path, const MemoryBudget& budget) {
+  return read_rgb_image(path, "environment image", budget);
 }
 
 }  // namespace snee

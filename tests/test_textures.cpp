@@ -1,0 +1,153 @@
+// Textures (scene/texture_set.h and the loader's "albedo_texture"): lookups filter linear
+// values as OpenImageIO's TextureSystem does, wrap as asked and average over wide footprints;
+// bad textures and surfaces without texture coordinates are clear errors naming the JSON path.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "scene/scene_loader.h"
+#include "scene/texture_set.h"
+#include "tests/support/scene_error_of.h"
+#include "tests/support/test_directory.h"
+#include "tests/support/texture_images.h"
+
+namespace snee {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using test::quadrant_colour;
+
+void expect_rgb(Rgb got, Rgb expected, float tolerance, const std::string& what) {
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], tolerance) << what << " ch " << c;
+}
+
+class TextureTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::fresh_test_directory("test_textures");
+    ASSERT_TRUE(test::write_quadrant_image((dir_ / "quadrants.exr").string()));
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // The set reads its pixels from these as it needs them, so they outlive it.
+  std::vector<Texture> quadrant_textures() const {
+    return load_scene_json(textured_quad_scene(), "textures", dir_.string()).scene.textures;
+  }
+
+  // A textured quad seen from above under a light from above.
+  static json textured_quad_scene(const json& material = {{"type", "diffuse"},
+                                                          {"albedo_texture", "quadrants.exr"}}) {
+    return {{"camera",
+             {{"position", {0.0, 2.0, 0.0}},
+              {"look_at", {0.0, 0.0, 0.0}},
+              {"up", {0.0, 0.0, -1.0}},
+              {"resolution", {8, 8}}}},
+            {"shapes", {{{"type", "quad"}, {"size", 2.0}, {"material", material}}}},
+            {"lights", {{{"type", "directional"}, {"direction", {0.0, 1.0, 0.0}}}}}};
+  }
+
+  fs::path dir_;
+};
+
+// Between the texel centres of a quadrant the bilinear lookup is that quadrant's colour; half
+// way between the centres of two texels of different quadrants it is their mean.
+TEST_F(TextureTest, PointLookupsAreBilinearInLinearValues) {
+  const std::vector<Texture> textures = quadrant_textures();
+  const TextureSet set(textures);
+  const float plateau[2] = {1.0f / 8, 3.0f / 8};  // within texel centres 0.5/8 .. 3.5/8
+  for (int q = 0; q < 4; ++q) {
+    for (const float a : plateau) {
+      for (const float b : plateau) {
+        const Uv uv{a + 0.5f * (q % 2), b + 0.5f * (q / 2)};
+        expect_rgb(set.lookup(0, uv, 0.0f), quadrant_colour(q), 1e-6f,
+                   "quadrant " + std::to_string(q));
+      }
+    }
+  }
+  expect_rgb(set.lookup(0, {0.5f, 0.25f}, 0.0f), (quadrant_colour(0) + quadrant_colour(1)) * 0.5f,
+             1e-6f, "the A|B edge");
+}
+
+// Repeat (the default and the loader's), mirror and clamp, as glTF's samplers name them.
+TEST_F(TextureTest, WrapModesRepeatMirrorAndClamp) {
+  std::vector<Texture> textures = quadrant_textures();
+  textures.push_back(textures[0]);
+  textures.push_back(textures[0]);
+  textures[1].wrap_u = textures[1].wrap_v = TextureWrap::kMirror;
+  textures[2].wrap_u = textures[2].wrap_v = TextureWrap::kClamp;
+  const TextureSet set(textures);
+  // u = 1.3 repeats to 0.3 (top-left), clamps to the last column (top-right); u = -0.2 mirrors
+  // to 0.2 (top-left) and repeats to 0.8 (top-right).
+  expect_rgb(set.lookup(0, {1.3f, 0.25f}, 0.0f), quadrant_colour(0), 1e-6f, "repeat 1.3");
+  expect_rgb(set.lookup(2, {1.3f, 0.25f}, 0.0f), quadrant_colour(1), 1e-6f, "clamp 1.3");
+  expect_rgb(set.lookup(1, {-0.2f, 0.25f}, 0.0f), quadrant_colour(0), 1e-6f, "mirror -0.2");
+  expect_rgb(set.lookup(0, {-0.2f, 0.25f}, 0.0f), quadrant_colour(1), 1e-6f, "repeat -0.2");
+  // v = 1.8 mirrors to 0.2 (top) and repeats to 0.8 (bottom).
+  expect_rgb(set.lookup(1, {0.25f, 1.8f}, 0.0f), quadrant_colour(0), 1e-6f, "mirror v 1.8");
+  expect_rgb(set.lookup(0, {0.25f, 1.8f}, 0.0f), quadrant_colour(2), 1e-6f, "repeat v 1.8");
+}
+
+// A footprint as wide as the texture reads the coarsest MIP level, the mean of the image: the
+// pyramid averages linear values, so filtering keeps the texture's mean reflectance.
+TEST_F(TextureTest, WideFootprintsAverageTheImage) {
+  const std::vector<Texture> textures = quadrant_textures();
+  const TextureSet set(textures);
+  const Rgb mean =
+      (quadrant_colour(0) + quadrant_colour(1) + quadrant_colour(2) + quadrant_colour(3)) * 0.25f;
+  for (const Uv uv : {Uv{0.1f, 0.1f}, Uv{0.6f, 0.3f}, Uv{0.9f, 0.9f}}) {
+    expect_rgb(set.lookup(0, uv, 2.0f), mean, 1e-5f, "1x1 level");
+  }
+  // A footprint of two texels blends the finest two levels; inside a quadrant's plateau of the
+  // 4x4 level (its texel centres at 1/8 and 3/8) the colour is still the quadrant's.
+  expect_rgb(set.lookup(0, {0.25f, 0.25f}, 2.0f / 8), quadrant_colour(0), 1e-6f, "two texels");
+}
+
+TEST_F(TextureTest, LoaderReadsATextureOncePerFileWithAWhiteFactor) {
+  json doc = textured_quad_scene();
+  doc["materials"] = {{{"name", "tinted"},
+                       {"type", "diffuse"},
+                       {"albedo", {0.5, 0.5, 0.5}},
+                       {"albedo_texture", "quadrants.exr"}}};
+  doc["shapes"].push_back({{"type", "quad"}, {"size", 1.0}, {"material", "tinted"}});
+  const Scene scene = load_scene_json(doc, "textures", dir_.string()).scene;
+  ASSERT_EQ(scene.textures.size(), 1u);
+  EXPECT_EQ(scene.textures[0].image.width, 8);
+  ASSERT_EQ(scene.materials.size(), 2u);
+  for (const Material& m : scene.materials) EXPECT_EQ(m.albedo_texture, 0);
+  expect_rgb(scene.materials[0].albedo, Rgb(0.5f), 0, "named");
+  expect_rgb(scene.materials[1].albedo, Rgb(1.0f), 0, "inline, no factor");
+  ASSERT_EQ(scene.shapes[1].mesh.uvs.size(), 4u);
+}
+
+TEST_F(TextureTest, BadTexturesNameTheFileAndTheJsonPath) {
+  const std::string missing = test::scene_error_of([&] {
+    load_scene_json(textured_quad_scene({{"type", "diffuse"}, {"albedo_texture", "nope.png"}}),
+                    "scene.json", dir_.string());
+  });
+  EXPECT_NE(missing.find("shapes[0].material.albedo_texture"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("nope.png"), std::string::npos) << missing;
+
+  std::ofstream(dir_ / "text.png") << "not an image";
+  const std::string broken = test::scene_error_of([&] {
+    load_scene_json(textured_quad_scene({{"type", "diffuse"}, {"albedo_texture", "text.png"}}),
+                    "scene.json", dir_.string());
+  });
+  EXPECT_NE(broken.find("text.png: cannot read texture"), std::string::npos) << broken;
+
+  json sphere = textured_quad_scene();
+  sphere["shapes"][0] = {{"type", "sphere"},
+                         {"center", {0.0, 0.0, 0.0}},
+                         {"radius", 1.0},
+                         {"material", {{"type", "diffuse"}, {"albedo_texture", "quadrants.exr"}}}};
+  const std::string no_uvs =
+      test::scene_error_of([&] { load_scene_json(sphere, "scene.json", dir_.string()); });
+  EXPECT_NE(no_uvs.find("shapes[0].material"), std::string::npos) << no_uvs;
+  EXPECT_NE(no_uvs.find("has no texture coordinates"), std::string::npos) << no_uvs;
+}
+
+}  // namespace
+}  // namespace snee
