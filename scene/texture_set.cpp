@@ -4,6 +4,8 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <atomic>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -68,24 +70,28 @@ OIIO::TextureOpt::Wrap oiio_wrap(TextureWrap wrap) {
 
 struct TextureSet::Impl {
   OIIO::TextureSystem* system = nullptr;
+  std::vector<OIIO::ustring> names;  // by texture
   std::vector<OIIO::TextureSystem::TextureHandle*> handles;
   std::vector<OIIO::TextureOpt> options;  // by texture
 };
 
 TextureSet::TextureSet(const std::vector<Texture>& textures) : impl_(std::make_unique<Impl>()) {
-  // A private system: the process-wide one would share handles (and names) between renders.
-  impl_->system = OIIO::TextureSystem::create(/*shared=*/false);
+  // The process-wide system, never destroyed: OpenImageIO 2.4's TextureSystem::destroy deletes
+  // its implementation through the base class (AddressSanitizer: new-delete-type-mismatch).
+  // Each set's textures get names no other set uses and are dropped from the cache with it.
+  impl_->system = OIIO::TextureSystem::create(/*shared=*/true);
   OIIO::TextureSystem& system = *impl_->system;
   // The levels are made in memory from the finest one (automip); rows are cut into 64x64 tiles
   // (autotile), the unit the cache keeps and evicts.
   system.attribute("automip", 1);
   system.attribute("autotile", 64);
   for (size_t i = 0; i < textures.size(); ++i) {
-    // The name only identifies the texture to the cache; the address makes it unique to this set
-    // (a file of that name is never read, since the creator serves the pixels).
-    const OIIO::ustring name(std::string("snee-texture:") +
-                             std::to_string(reinterpret_cast<uintptr_t>(this)) + ":" +
-                             std::to_string(i));
+    // The name only identifies the texture to the cache (a file of that name is never read,
+    // since the creator serves the pixels); the count makes it unique in the process, so a name
+    // never refers to the pixels of a set already gone.
+    static std::atomic<uint64_t> next_name{0};
+    const OIIO::ustring name("snee-texture:" + std::to_string(next_name++));
+    impl_->names.push_back(name);
     OIIO::ImageSpec config;
     const RgbImage* image = &textures[i].image;
     config.attribute(MemoryImageInput::kPixelsAttribute, OIIO::TypeDesc::PTR, &image);
@@ -111,7 +117,7 @@ TextureSet::TextureSet(const std::vector<Texture>& textures) : impl_(std::make_u
 }
 
 TextureSet::~TextureSet() {
-  OIIO::TextureSystem::destroy(impl_->system);
+  for (const OIIO::ustring& name : impl_->names) impl_->system->invalidate(name, /*force=*/true);
 }
 
 Rgb TextureSet::lookup(int texture, Uv uv, float width) const {
