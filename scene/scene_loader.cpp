@@ -467,11 +467,7 @@ class SceneReader {
       shape.closed = edges.boundary == 0;
       if (shape.closed && signed_volume(shape.mesh) < 0) flip_winding(shape.mesh);
       shape.material = materials[primitive.material];
-      if (out_.scene.materials[shape.material].albedo_texture >= 0 && shape.mesh.uvs.empty()) {
-        value.fail("the material '" + out_.scene.materials[shape.material].name + "' of " +
-                   shape.source +
-                   " has a texture, but the primitive has no texture coordinates (TEXCOORD_0)");
-      }
+      require_texture_coordinates(shape, value, "primitive " + shape.source, " (TEXCOORD_0)");
       shape.interior_medium = media[primitive.material];
       shape.emission = asset.materials[primitive.material].emission;
       if (shape.interior_medium >= 0) {
@@ -568,6 +564,16 @@ class SceneReader {
           .fail("the " + kind + " name '" + name + "' is already used by " + it->second);
     }
     return name;
+  }
+
+  // A shape whose material has a texture needs texture coordinates to look it up with; `what`
+  // names the shape in the error at `where`.
+  void require_texture_coordinates(const Shape& shape, const JsonValue& where,
+                                   const std::string& what, const std::string& detail) const {
+    const Material& material = out_.scene.materials[static_cast<size_t>(shape.material)];
+    if (material.albedo_texture < 0 || !shape.mesh.uvs.empty()) return;
+    where.fail("the material '" + material.name + "' has a texture, but the " + what +
+               " has no texture coordinates" + detail);
   }
 
   // The texture read from `file`, read once however many materials use it; `where` is the JSON
@@ -861,14 +867,10 @@ class SceneReader {
 
     shape.material = reference(obj.required("material"), true);
     canonical["material"] = out_.scene.materials[shape.material].name;
-    if (out_.scene.materials[shape.material].albedo_texture >= 0 && shape.mesh.uvs.empty()) {
-      obj.required("material")
-          .fail("the material '" + out_.scene.materials[shape.material].name +
-                "' has a texture, but the " +
-                (shape.kind == ShapeKind::kSphere ? std::string("sphere")
-                                                  : "mesh '" + shape.source + "'") +
-                " has no texture coordinates to look it up with");
-    }
+    require_texture_coordinates(
+        shape, obj.required("material"),
+        shape.kind == ShapeKind::kSphere ? std::string("sphere") : "mesh '" + shape.source + "'",
+        " to look it up with");
     if (auto medium = obj.optional("medium")) {
       shape.interior_medium = reference(*medium, false);
       canonical["medium"] = out_.scene.media[shape.interior_medium].name;

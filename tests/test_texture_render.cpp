@@ -42,14 +42,9 @@ Scene textured_quad(const fs::path& dir) {
   return load_scene_json(doc, "textured quad", dir.string()).scene;
 }
 
-class TextureRender : public ::testing::Test {
+class TextureRender : public test::QuadrantTextureTest {
  protected:
-  void SetUp() override {
-    dir_ = test::fresh_test_directory("test_texture_render");
-    ASSERT_TRUE(test::write_quadrant_image((dir_ / "quadrants.exr").string()));
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
+  TextureRender() : QuadrantTextureTest("test_texture_render") {}
 };
 
 // Pixels 2..5 of each quadrant see texture coordinates within its plateau (1/16 .. 7/16 of the

@@ -25,13 +25,9 @@ void expect_rgb(Rgb got, Rgb expected, float tolerance, const std::string& what)
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected[c], tolerance) << what << " ch " << c;
 }
 
-class TextureTest : public ::testing::Test {
+class TextureTest : public test::QuadrantTextureTest {
  protected:
-  void SetUp() override {
-    dir_ = test::fresh_test_directory("test_textures");
-    ASSERT_TRUE(test::write_quadrant_image((dir_ / "quadrants.exr").string()));
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  TextureTest() : QuadrantTextureTest("test_textures") {}
 
   // The set reads its pixels from these as it needs them, so they outlive it.
   std::vector<Texture> quadrant_textures() const {
@@ -49,8 +45,6 @@ class TextureTest : public ::testing::Test {
             {"shapes", {{{"type", "quad"}, {"size", 2.0}, {"material", material}}}},
             {"lights", {{{"type", "directional"}, {"direction", {0.0, 1.0, 0.0}}}}}};
   }
-
-  fs::path dir_;
 };
 
 // Between the texel centres of a quadrant the bilinear lookup is that quadrant's colour; half

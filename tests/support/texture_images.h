@@ -4,12 +4,15 @@
 #pragma once
 
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <array>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "scene/math.h"
+#include "tests/support/test_directory.h"
 
 namespace snee::test {
 
@@ -36,5 +39,20 @@ inline bool write_quadrant_image(const std::string& path) {
   if (!out || !out->open(path, OIIO::ImageSpec(8, 8, 3, OIIO::TypeDesc::FLOAT))) return false;
   return out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close();
 }
+
+// A test with a scratch directory of its own that holds the quadrant image as quadrants.exr.
+class QuadrantTextureTest : public ::testing::Test {
+ protected:
+  explicit QuadrantTextureTest(std::string prefix) : prefix_(std::move(prefix)) {}
+  void SetUp() override {
+    dir_ = fresh_test_directory(prefix_);
+    ASSERT_TRUE(write_quadrant_image((dir_ / "quadrants.exr").string()));
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path dir_;
+
+ private:
+  std::string prefix_;
+};
 
 }  // namespace snee::test
