@@ -12,15 +12,15 @@
 namespace snee {
 
 // `info` with its textured parameters looked up at point p of triangle prim of surface geom,
-// reached after `distance` along the ray, in `textured`; `info` itself where it has no texture.
+// (a triangle of a mesh, or a sphere), reached after `distance` along the ray, in `textured`;
+// `info` itself where it has no texture.
 inline const SurfaceInfo& textured_surface(const KernelContext& ctx, const SurfaceInfo& info,
                                            uint32_t geom, uint32_t prim, Vec3 p, float distance,
                                            SurfaceInfo& textured) {
   if (info.albedo_texture < 0) return info;
-  const TriangleMesh& mesh = ctx.scene->shapes[geom].mesh;
-  const float width = ctx.pixel_spread * distance * uv_per_length(mesh, prim);
-  const Rgb colour =
-      ctx.textures->lookup(info.albedo_texture, interpolated_uv(mesh, prim, p), width);
+  const SurfaceUv at = surface_uv(ctx.scene->shapes[geom], prim, p);
+  const float width = ctx.pixel_spread * distance * at.per_length;
+  const Rgb colour = ctx.textures->lookup(info.albedo_texture, at.uv, width);
   textured = info;
   textured.albedo = info.albedo * colour;
   textured.aov_albedo = textured.albedo;

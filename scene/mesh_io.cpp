@@ -30,8 +30,9 @@ std::string lowercase_extension(const std::string& path) {
 
 struct ObjCounts {
   size_t vertices = 0;
-  size_t normals = 0;  // vn lines
-  size_t corners = 0;  // over all faces
+  size_t normals = 0;    // vn lines
+  size_t texcoords = 0;  // vt lines
+  size_t corners = 0;    // over all faces
 };
 
 bool is_obj_space(char c) {
@@ -55,6 +56,33 @@ std::vector<std::string_view> obj_words(std::string_view line) {
 std::string_view without_plus(std::string_view word) {
   if (word.size() > 1 && word[0] == '+' && word[1] != '+' && word[1] != '-') word.remove_prefix(1);
   return word;
+}
+
+// What one face corner names besides its position: the normal and texture coordinates numbers
+// (0 where the mesh keeps none).
+constexpr uint32_t kUnusedVertex = ~uint32_t{0};
+struct CornerAttributes {
+  uint32_t vertex = kUnusedVertex;
+  int normal = 0;
+  int texcoord = 0;
+  bool operator==(const CornerAttributes&) const = default;
+};
+
+struct CornerAttributesHash {
+  size_t operator()(const CornerAttributes& a) const {
+    const uint64_t attributes =
+        (uint64_t{static_cast<uint32_t>(a.normal)} << 32) | static_cast<uint32_t>(a.texcoord);
+    return std::hash<uint64_t>()(attributes * 0x9E3779B97F4A7C15ull ^ a.vertex);
+  }
+};
+
+// A whole word that reads as a number finite in float.
+bool is_finite_number(std::string_view word) {
+  word = without_plus(word);
+  double value = 0;
+  const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
+  return ec == std::errc() && end == word.data() + word.size() &&
+         std::isfinite(static_cast<float>(value));
 }
 
 // tinyobjloader lets two kinds of damage through silently: a coordinate it cannot parse
@@ -86,12 +114,18 @@ ObjCounts check_obj_text(const std::string& path, std::string_view text) {
                    " coordinates (expected x y z)");
       }
       for (size_t k = 1; k <= 3; ++k) {
-        const std::string_view word = without_plus(words[k]);
-        double value = 0;
-        const auto [end, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
-        if (ec != std::errc() || end != word.data() + word.size() ||
-            !std::isfinite(static_cast<float>(value))) {
+        if (!is_finite_number(words[k])) {
           throw fail(vertex + " has a coordinate '" + std::string(words[k]) +
+                     "' that is not a finite number");
+        }
+      }
+    } else if (words[0] == "vt") {
+      // "vt u [v [w]]": only u and v are used, v is 0 where missing as tinyobjloader reads it.
+      const std::string texcoord = "texture coordinate " + std::to_string(++counts.texcoords);
+      if (words.size() < 2) throw fail(texcoord + " has no coordinates (expected u [v [w]])");
+      for (size_t k = 1; k < std::min<size_t>(words.size(), 3); ++k) {
+        if (!is_finite_number(words[k])) {
+          throw fail(texcoord + " has a coordinate '" + std::string(words[k]) +
                      "' that is not a finite number");
         }
       }
@@ -130,10 +164,12 @@ TriangleMesh load_obj(const std::string& path, const MemoryBudget& budget) {
   const uint64_t array_bytes = saturating_add(
       saturating_add(
           saturating_multiply(counts.vertices, 2 * 3 * sizeof(tinyobj::real_t) + 2 * sizeof(Vec3)),
-          saturating_multiply(counts.normals, 2 * 3 * sizeof(tinyobj::real_t))),
-      // A corner may split its vertex (a position and a normal more).
+          saturating_add(saturating_multiply(counts.normals, 2 * 3 * sizeof(tinyobj::real_t)),
+                         saturating_multiply(counts.texcoords, 2 * 2 * sizeof(tinyobj::real_t)))),
+      // A corner may split its vertex (a position, a normal and texture coordinates more).
       saturating_multiply(counts.corners, 2 * (sizeof(tinyobj::index_t) + sizeof(unsigned int)) +
-                                              3 * sizeof(uint32_t) + 2 * sizeof(Vec3)));
+                                              3 * sizeof(uint32_t) + 2 * sizeof(Vec3) + sizeof(Uv) +
+                                              sizeof(CornerAttributes)));
   if (!budget.allows(array_bytes)) {
     throw SceneError(path + ": " +
                      budget.exceeded("the arrays of " + std::to_string(counts.vertices) +
@@ -170,30 +206,36 @@ TriangleMesh load_obj(const std::string& path, const MemoryBudget& budget) {
     }
   }
 
-  // Vertex normals only where every face corner names one (v//vn, v/vt/vn); otherwise the mesh
-  // is flat-shaded.
+  // Vertex normals, and texture coordinates, only where every face corner names one (v//vn,
+  // v/vt, v/vt/vn); otherwise the mesh is flat-shaded, or has no texture coordinates.
   const size_t normal_count = attrib.normals.size() / 3;
+  const size_t texcoord_count = attrib.texcoords.size() / 2;
   bool with_normals = normal_count > 0;
+  bool with_uvs = texcoord_count > 0;
   for (const tinyobj::shape_t& shape : shapes) {
     for (const tinyobj::index_t& corner : shape.mesh.indices) {
       with_normals = with_normals && corner.normal_index >= 0;
+      with_uvs = with_uvs && corner.texcoord_index >= 0;
     }
   }
-  // A position whose corners name different normals becomes one vertex per normal: the first
-  // keeps the file's number, the others are appended.
-  std::vector<int> normal_of(with_normals ? mesh.positions.size() : 0, -1);
-  std::unordered_map<uint64_t, uint32_t> split;
+  // A position whose corners name different normals or texture coordinates becomes one vertex
+  // per pair: the first keeps the file's number, the others are appended.
+  const bool with_attributes = with_normals || with_uvs;
+  std::vector<CornerAttributes> attributes_of(with_attributes ? mesh.positions.size() : 0);
+  std::unordered_map<CornerAttributes, uint32_t, CornerAttributesHash> split;
   const auto corner_vertex = [&](const tinyobj::index_t& corner) -> uint32_t {
     const auto vertex = static_cast<uint32_t>(corner.vertex_index);
-    if (!with_normals) return vertex;
-    const int n = corner.normal_index;
-    if (normal_of[vertex] < 0) normal_of[vertex] = n;
-    if (normal_of[vertex] == n) return vertex;
-    const uint64_t key = (uint64_t{vertex} << 32) | static_cast<uint32_t>(n);
-    const auto [it, added] = split.try_emplace(key, static_cast<uint32_t>(mesh.positions.size()));
+    if (!with_attributes) return vertex;
+    const CornerAttributes wanted{vertex, with_normals ? corner.normal_index : 0,
+                                  with_uvs ? corner.texcoord_index : 0};
+    CornerAttributes& first = attributes_of[vertex];
+    if (first.vertex == kUnusedVertex) first = wanted;
+    if (first == wanted) return vertex;
+    const auto [it, added] =
+        split.try_emplace(wanted, static_cast<uint32_t>(mesh.positions.size()));
     if (added) {
       mesh.positions.push_back(mesh.positions[vertex]);
-      normal_of.push_back(n);
+      attributes_of.push_back(wanted);
     }
     return it->second;
   };
@@ -221,6 +263,13 @@ TriangleMesh load_obj(const std::string& path, const MemoryBudget& budget) {
                            std::to_string(normal + 1) + " but the file has " +
                            std::to_string(normal_count) + " normals");
         }
+        const int texcoord = corners[first + k].texcoord_index;
+        if (with_uvs && static_cast<size_t>(texcoord) >= texcoord_count) {
+          throw SceneError(path + ": face " + std::to_string(face_number) +
+                           " refers to texture coordinate " + std::to_string(texcoord + 1) +
+                           " but the file has " + std::to_string(texcoord_count) +
+                           " texture coordinates");
+        }
       }
       for (size_t k = 1; k + 1 < face_size; ++k) {
         mesh.indices.push_back(corner_vertex(corners[first]));
@@ -231,16 +280,25 @@ TriangleMesh load_obj(const std::string& path, const MemoryBudget& budget) {
     }
   }
   if (mesh.indices.empty()) throw SceneError(path + ": the OBJ file has no faces");
+  // A vertex no face uses is never shaded nor textured; any values will do.
+  const auto used = [&](size_t i) { return attributes_of[i].vertex != kUnusedVertex; };
   if (with_normals) {
     const std::vector<float>& vn = attrib.normals;
     mesh.normals.resize(mesh.positions.size());
     for (size_t i = 0; i < mesh.normals.size(); ++i) {
-      // A vertex no face uses is never shaded; any unit vector will do.
-      const size_t n = normal_of[i] < 0 ? 0 : static_cast<size_t>(normal_of[i]);
-      mesh.normals[i] =
-          normal_of[i] < 0 ? Vec3(0, 0, 1) : Vec3(vn[3 * n], vn[3 * n + 1], vn[3 * n + 2]);
+      const auto n = static_cast<size_t>(attributes_of[i].normal);
+      mesh.normals[i] = used(i) ? Vec3(vn[3 * n], vn[3 * n + 1], vn[3 * n + 2]) : Vec3(0, 0, 1);
     }
     normalize_vertex_normals(mesh, path);
+  }
+  if (with_uvs) {
+    const std::vector<float>& vt = attrib.texcoords;
+    mesh.uvs.resize(mesh.positions.size());
+    for (size_t i = 0; i < mesh.uvs.size(); ++i) {
+      const auto t = static_cast<size_t>(attributes_of[i].texcoord);
+      // OBJ's v grows up the image, snee's (like glTF's) down from its top row.
+      if (used(i)) mesh.uvs[i] = {vt[2 * t], 1.0f - vt[2 * t + 1]};
+    }
   }
   return mesh;
 }

@@ -308,9 +308,11 @@ class BinaryBody {
 // holds the corner indices.
 struct MeshLayout {
   size_t vertex_element = 0, face_element = 0;
-  // Per vertex property: 0..2 for x..z, 3..5 for the normal's nx..nz, -1 otherwise.
+  // Per vertex property: 0..2 for x..z, 3..5 for the normal's nx..nz, 6..7 for the texture
+  // coordinates, -1 otherwise.
   std::vector<int> coordinate_of;
   bool normals = false;  // nx, ny and nz are all there
+  bool uvs = false;      // both texture coordinates are there
   size_t index_property = 0;
 };
 
@@ -328,7 +330,7 @@ MeshLayout find_layout(const std::string& path, const PlyHeader& header) {
 
   const std::vector<PlyProperty>& vertex_props = header.elements[*vertex].properties;
   layout.coordinate_of.assign(vertex_props.size(), -1);
-  bool has[6] = {false, false, false, false, false, false};
+  bool has[8] = {false, false, false, false, false, false, false, false};
   for (size_t i = 0; i < vertex_props.size(); ++i) {
     const std::string& name = vertex_props[i].name;
     const int axis = name == "x"    ? 0
@@ -337,7 +339,11 @@ MeshLayout find_layout(const std::string& path, const PlyHeader& header) {
                      : name == "nx" ? 3
                      : name == "ny" ? 4
                      : name == "nz" ? 5
-                                    : -1;
+                     // The names writers use for texture coordinates (Blender: s, t).
+                     : name == "u" || name == "s" || name == "texture_u" || name == "texture_s" ? 6
+                     : name == "v" || name == "t" || name == "texture_v" || name == "texture_t"
+                         ? 7
+                         : -1;
     if (axis < 0) continue;
     if (vertex_props[i].is_list) {
       throw SceneError(path + ": vertex property '" + name + "' is a list (expected a number)");
@@ -350,8 +356,9 @@ MeshLayout find_layout(const std::string& path, const PlyHeader& header) {
   }
   // A normal needs all three components; a partial one is ignored (flat shading).
   layout.normals = has[3] && has[4] && has[5];
-  if (!layout.normals) {
-    for (int& axis : layout.coordinate_of) axis = axis >= 3 ? -1 : axis;
+  layout.uvs = has[6] && has[7];
+  for (int& axis : layout.coordinate_of) {
+    if ((!layout.normals && axis >= 3 && axis < 6) || (!layout.uvs && axis >= 6)) axis = -1;
   }
 
   const std::vector<PlyProperty>& face_props = header.elements[*face].properties;
@@ -427,7 +434,8 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
   // A triangle per face; polygons grow the index array as they come, by no more than the
   // corners they add to the file.
   const uint64_t array_bytes =
-      saturating_add(saturating_multiply(vertex_count, (layout.normals ? 2 : 1) * sizeof(Vec3)),
+      saturating_add(saturating_multiply(vertex_count, (layout.normals ? 2 : 1) * sizeof(Vec3) +
+                                                           (layout.uvs ? sizeof(Uv) : 0)),
                      saturating_multiply(face_count, 3 * sizeof(uint32_t)));
   if (!budget.allows(array_bytes)) {
     throw SceneError(path + ": " +
@@ -438,6 +446,7 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
   TriangleMesh mesh;
   mesh.positions.resize(vertex_count);
   if (layout.normals) mesh.normals.resize(vertex_count);
+  if (layout.uvs) mesh.uvs.resize(vertex_count);
   mesh.indices.reserve(3 * face_count);
   std::vector<uint32_t> corners;
 
@@ -461,8 +470,17 @@ TriangleMesh read_body(const std::string& path, const PlyHeader& header, const M
             throw fail(i, "expected a finite number for property '" + property.name + "'");
           }
           const int axis = layout.coordinate_of[p];
-          (axis < 3 ? mesh.positions[i][axis] : mesh.normals[i][axis - 3]) =
-              static_cast<float>(value);
+          const auto coordinate = static_cast<float>(value);
+          if (axis < 3) {
+            mesh.positions[i][axis] = coordinate;
+          } else if (axis < 6) {
+            mesh.normals[i][axis - 3] = coordinate;
+          } else if (axis == 6) {
+            mesh.uvs[i].u = coordinate;
+          } else {
+            // PLY's v, like OBJ's, grows up the image; snee's down from its top row.
+            mesh.uvs[i].v = 1.0f - coordinate;
+          }
           continue;
         }
 

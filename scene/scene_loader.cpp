@@ -566,12 +566,15 @@ class SceneReader {
     return name;
   }
 
-  // A shape whose material has a texture needs texture coordinates to look it up with; `what`
-  // names the shape in the error at `where`.
+  // A mesh whose material has a texture needs texture coordinates to look it up with (a sphere
+  // has its own, surface_uv.h); `what` names the shape in the error at `where`.
   void require_texture_coordinates(const Shape& shape, const JsonValue& where,
                                    const std::string& what, const std::string& detail) const {
     const Material& material = out_.scene.materials[static_cast<size_t>(shape.material)];
-    if (material.albedo_texture < 0 || !shape.mesh.uvs.empty()) return;
+    if (material.albedo_texture < 0 || shape.kind == ShapeKind::kSphere ||
+        !shape.mesh.uvs.empty()) {
+      return;
+    }
     where.fail("the material '" + material.name + "' has a texture, but the " + what +
                " has no texture coordinates" + detail);
   }
@@ -867,10 +870,8 @@ class SceneReader {
 
     shape.material = reference(obj.required("material"), true);
     canonical["material"] = out_.scene.materials[shape.material].name;
-    require_texture_coordinates(
-        shape, obj.required("material"),
-        shape.kind == ShapeKind::kSphere ? std::string("sphere") : "mesh '" + shape.source + "'",
-        " to look it up with");
+    require_texture_coordinates(shape, obj.required("material"), "mesh '" + shape.source + "'",
+                                " to look it up with");
     if (auto medium = obj.optional("medium")) {
       shape.interior_medium = reference(*medium, false);
       canonical["medium"] = out_.scene.media[shape.interior_medium].name;

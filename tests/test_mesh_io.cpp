@@ -160,6 +160,66 @@ TEST_F(MeshIoTest, BadVertexNormalsNameFileAndVertex) {
       << message;
 }
 
+// OBJ's v grows up the image, snee's down from its top row; a position whose corners name
+// different texture coordinates (a seam) becomes one vertex per pair.
+TEST_F(MeshIoTest, ObjTextureCoordinatesFlipVAndSplitAtSeams) {
+  const std::string path = write("uvs.obj",
+                                 "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                 "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.25\n"
+                                 "f 1/1 2/2 3/3\nf 1/5 3/3 4/4\n");
+  const TriangleMesh m = load_obj(path);
+  ASSERT_EQ(m.positions.size(), 5u);
+  const std::vector<uint32_t> expected = {0, 1, 2, 4, 2, 3};
+  EXPECT_EQ(m.indices, expected);
+  EXPECT_EQ(m.positions[4], m.positions[0]);
+  EXPECT_TRUE(m.normals.empty());
+  ASSERT_EQ(m.uvs.size(), 5u);
+  const float expected_uv[5][2] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}, {0.25f, 1}};
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_EQ(m.uvs[i].u, expected_uv[i][0]) << i;
+    EXPECT_EQ(m.uvs[i].v, expected_uv[i][1]) << i;
+  }
+  // With normals too, vertices split on the pair.
+  const TriangleMesh both = load_obj(write("both.obj",
+                                           "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 1 0\n"
+                                           "vt 0 0\nvt 1 1\n"
+                                           "f 1/1/1 2/1/1 3/1/1\nf 1/2/1 3/1/1 2/1/2\n"));
+  ASSERT_EQ(both.positions.size(), 5u);
+  ASSERT_EQ(both.uvs.size(), 5u);
+  ASSERT_EQ(both.normals.size(), 5u);
+  EXPECT_EQ(both.uvs[3].u, 1.0f);
+  EXPECT_EQ(both.uvs[3].v, 0.0f);
+  EXPECT_EQ(both.normals[3], Vec3(0, 0, 1));
+  EXPECT_EQ(both.normals[4], Vec3(0, 1, 0));
+  // A face without texture coordinates leaves the whole mesh without them.
+  const TriangleMesh partial = load_obj(write("partial.obj",
+                                              "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\n"
+                                              "f 1/1 2/1 3/1\nf 1 3 4\n"));
+  EXPECT_TRUE(partial.uvs.empty());
+  EXPECT_EQ(partial.positions.size(), 4u);
+}
+
+TEST_F(MeshIoTest, BadObjTextureCoordinatesNameFileAndLine) {
+  const struct {
+    const char* line;
+    const char* expected;
+  } cases[] = {
+      {"vt nan 0",
+       "line 4: texture coordinate 1 has a coordinate 'nan' that is not a finite number"},
+      {"vt 0 1e39",
+       "line 4: texture coordinate 1 has a coordinate '1e39' that is not a finite "
+       "number"},
+      {"vt", "line 4: texture coordinate 1 has no coordinates (expected u [v [w]])"},
+      {"vt 0 0", "face 1 refers to texture coordinate 2 but the file has 1 texture coordinates"},
+  };
+  for (const auto& c : cases) {
+    const std::string path =
+        write("vt.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\n") + c.line + "\nf 1/1 2/1 3/2\n");
+    const std::string message = scene_error_of([&] { load_obj(path); });
+    EXPECT_NE(message.find("vt.obj: " + std::string(c.expected)), std::string::npos) << message;
+  }
+}
+
 TEST_F(MeshIoTest, PlyVertexNormalsAreRead) {
   const std::string path = write("normals.ply",
                                  "ply\nformat ascii 1.0\nelement vertex 3\n"
@@ -183,6 +243,38 @@ TEST_F(MeshIoTest, PlyVertexNormalsAreRead) {
                                               "end_header\n"
                                               "0 0 0 0 0\n1 0 0 0 3\n0 1 0 1 0\n3 0 1 2\n"));
   EXPECT_TRUE(partial.normals.empty());
+}
+
+TEST_F(MeshIoTest, PlyTextureCoordinatesAreReadUnderTheirCommonNames) {
+  for (const auto& [u, v] :
+       {std::pair{"u", "v"}, std::pair{"s", "t"}, std::pair{"texture_u", "texture_v"}}) {
+    const std::string path =
+        write("uvs.ply", std::string("ply\nformat ascii 1.0\nelement vertex 3\n"
+                                     "property float x\nproperty float y\nproperty float z\n"
+                                     "property float ") +
+                             u + "\nproperty float " + v +
+                             "\nelement face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n"
+                             "0 0 0 0 0\n1 0 0 1 0.25\n0 1 0 0.5 1\n3 0 1 2\n");
+    const TriangleMesh m = load_ply(path);
+    ASSERT_EQ(m.uvs.size(), 3u) << u;
+    EXPECT_EQ(m.uvs[0].u, 0.0f) << u;
+    EXPECT_EQ(m.uvs[0].v, 1.0f) << u;
+    EXPECT_EQ(m.uvs[1].u, 1.0f) << u;
+    EXPECT_EQ(m.uvs[1].v, 0.75f) << u;
+    EXPECT_EQ(m.uvs[2].u, 0.5f) << u;
+    EXPECT_EQ(m.uvs[2].v, 0.0f) << u;
+    EXPECT_EQ(m.positions[2], Vec3(0, 1, 0)) << u;
+  }
+  // u alone: no texture coordinates.
+  const TriangleMesh partial =
+      load_ply(write("partial.ply",
+                     "ply\nformat ascii 1.0\nelement vertex 3\n"
+                     "property float x\nproperty float y\nproperty float z\nproperty float u\n"
+                     "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                     "0 0 0 0\n1 0 0 1\n0 1 0 0.5\n3 0 1 2\n"));
+  EXPECT_TRUE(partial.uvs.empty());
+  EXPECT_EQ(partial.positions[1], Vec3(1, 0, 0));
 }
 
 TEST_F(MeshIoTest, AsciiPlyErrorsNameFileLineAndElement) {

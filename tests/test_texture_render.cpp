@@ -1,10 +1,13 @@
 // Textured diffuse surfaces in whole renders: a quad of the quadrant texture (texture_images.h)
 // under a light straight above of irradiance pi reflects radiance equal to the texture's colour
 // (albedo E / pi at cos 1), exactly, in every integrator; the first-hit albedo AOV is the same
-// colour; the image is bitwise the same for any thread count.
+// colour; the image is bitwise the same for any thread count. OBJ meshes and spheres wear
+// textures by their own texture coordinates.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
@@ -24,17 +27,15 @@ constexpr int kResolution = 16;
 
 // The quad (2 wide, at distance 2) fills the view exactly, so pixel (x, y) sees texture
 // coordinates ((x + 0.5) / 16, (y + 0.5) / 16) at its centre.
-Scene textured_quad(const fs::path& dir) {
+Scene textured_quad(const fs::path& dir, json shape = {{"type", "quad"}, {"size", 2.0}}) {
+  shape["material"] = {{"type", "diffuse"}, {"albedo_texture", "quadrants.exr"}};
   const json doc = {{"camera",
                      {{"position", {0.0, 2.0, 0.0}},
                       {"look_at", {0.0, 0.0, 0.0}},
                       {"up", {0.0, 0.0, -1.0}},
                       {"fov", 2 * std::atan(0.5) * 180 / std::numbers::pi},
                       {"resolution", {kResolution, kResolution}}}},
-                    {"shapes",
-                     {{{"type", "quad"},
-                       {"size", 2.0},
-                       {"material", {{"type", "diffuse"}, {"albedo_texture", "quadrants.exr"}}}}}},
+                    {"shapes", {shape}},
                     {"lights",
                      {{{"type", "directional"},
                        {"direction", {0.0, 1.0, 0.0}},
@@ -46,6 +47,58 @@ class TextureRender : public test::QuadrantTextureTest {
  protected:
   TextureRender() : QuadrantTextureTest("test_texture_render") {}
 };
+
+// An OBJ mesh of the quad's corners whose vt coordinates (v up the image) name the quad's
+// texture coordinates renders the quad's image exactly.
+TEST_F(TextureRender, ObjTextureCoordinatesRenderAsTheQuadDoes) {
+  std::ofstream(dir_ / "quad.obj") << "v -1 0 -1\nv -1 0 1\nv 1 0 1\nv 1 0 -1\n"
+                                      "vt 0 1\nvt 0 0\nvt 1 0\nvt 1 1\n"
+                                      "f 1/1 2/2 3/3 4/4\n";
+  const Scene quad = textured_quad(dir_);
+  Scene obj = textured_quad(dir_, {{"type", "mesh"}, {"file", "quad.obj"}});
+  RenderOptions options;
+  options.spp = 4;
+  options.seed = 5;
+  EXPECT_TRUE(test::bitwise_identical(render(quad, options).film, render(obj, options).film));
+}
+
+// A sphere wears the texture like a globe (scene/surface_uv.h): seen from the direction of
+// texture coordinates (u, v) and lit from there with irradiance pi, the point facing the camera
+// has radiance equal to the texture's colour at (u, v). The quadrant centres check that u grows
+// toward +x and v down from +y.
+TEST_F(TextureRender, SphereShowsEachQuadrantWhereTheGlobeMappingPutsIt) {
+  for (int quadrant = 0; quadrant < 4; ++quadrant) {
+    const double u = quadrant % 2 == 0 ? 0.25 : 0.75, v = quadrant / 2 == 0 ? 0.25 : 0.75;
+    const double phi = (u - 0.5) * 2 * std::numbers::pi, theta = v * std::numbers::pi;
+    const json d = {std::sin(theta) * std::sin(phi), std::cos(theta),
+                    std::sin(theta) * std::cos(phi)};
+    const json doc = {
+        {"camera",
+         {{"position", {4 * d[0].get<double>(), 4 * d[1].get<double>(), 4 * d[2].get<double>()}},
+          {"look_at", {0.0, 0.0, 0.0}},
+          {"up", {d[1].get<double>(), -d[0].get<double>(), 0.0}},
+          {"fov", 1.0},
+          {"resolution", {3, 3}}}},
+        {"shapes",
+         {{{"type", "sphere"},
+           {"center", {0.0, 0.0, 0.0}},
+           {"radius", 1.0},
+           {"material", {{"type", "diffuse"}, {"albedo_texture", "quadrants.exr"}}}}}},
+        {"lights",
+         {{{"type", "directional"}, {"direction", d}, {"irradiance", std::numbers::pi}}}}};
+    const Scene scene = load_scene_json(doc, "textured sphere", dir_.string()).scene;
+    RenderOptions options;
+    options.spp = 4;
+    options.seed = 7;
+    const Film film = render(scene, options).film;
+    const Rgb expected = test::quadrant_colour(quadrant);
+    // The centre pixel spans 1/3 degree: cosines of at least 0.99999, and texture coordinates
+    // within 0.003 of the quadrant's centre.
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(film.mean[4][c], expected[c], 1e-4f) << "quadrant " << quadrant << " ch " << c;
+    }
+  }
+}
 
 // Pixels 2..5 of each quadrant see texture coordinates within its plateau (1/16 .. 7/16 of the
 // texture, between its texel centres) over their whole footprint and filter.

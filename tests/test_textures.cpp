@@ -3,12 +3,14 @@
 // bad textures and surfaces without texture coordinates are clear errors naming the JSON path.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "scene/scene_loader.h"
+#include "scene/surface_uv.h"
 #include "scene/texture_set.h"
 #include "tests/support/scene_error_of.h"
 #include "tests/support/test_directory.h"
@@ -132,15 +134,64 @@ TEST_F(TextureTest, BadTexturesNameTheFileAndTheJsonPath) {
   });
   EXPECT_NE(broken.find("text.png: cannot read texture"), std::string::npos) << broken;
 
-  json sphere = textured_quad_scene();
-  sphere["shapes"][0] = {{"type", "sphere"},
-                         {"center", {0.0, 0.0, 0.0}},
-                         {"radius", 1.0},
-                         {"material", {{"type", "diffuse"}, {"albedo_texture", "quadrants.exr"}}}};
+  std::ofstream(dir_ / "bare.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  json bare = textured_quad_scene();
+  bare["shapes"][0] = {{"type", "mesh"},
+                       {"file", "bare.obj"},
+                       {"material", {{"type", "diffuse"}, {"albedo_texture", "quadrants.exr"}}}};
   const std::string no_uvs =
-      test::scene_error_of([&] { load_scene_json(sphere, "scene.json", dir_.string()); });
+      test::scene_error_of([&] { load_scene_json(bare, "scene.json", dir_.string()); });
   EXPECT_NE(no_uvs.find("shapes[0].material"), std::string::npos) << no_uvs;
-  EXPECT_NE(no_uvs.find("has no texture coordinates"), std::string::npos) << no_uvs;
+  EXPECT_NE(no_uvs.find("bare.obj' has no texture coordinates"), std::string::npos) << no_uvs;
+}
+
+Vec3 on_sphere(const Shape& sphere, float theta, float phi) {
+  return sphere.center + sphere.radius * Vec3(std::sin(theta) * std::sin(phi), std::cos(theta),
+                                              std::sin(theta) * std::cos(phi));
+}
+
+// The globe mapping of surface_uv.h: +z faces the image centre, +y is its top row, +x is to
+// the right of the centre.
+TEST(SphereUv, MapsLikeAGlobeSeenFromOutside) {
+  Shape sphere;
+  sphere.kind = ShapeKind::kSphere;
+  sphere.center = Vec3(1, -2, 3);
+  sphere.radius = 2;
+  const struct {
+    Vec3 direction;
+    float u, v;
+  } cases[] = {{{0, 0, 1}, 0.5f, 0.5f},         {{1, 0, 0}, 0.75f, 0.5f},
+               {{-1, 0, 0}, 0.25f, 0.5f},       {{0, 1, 0}, 0.5f, 0.0f},
+               {{0, -1, 0}, 0.5f, 1.0f},        {{0, 0.5f, 0.5f}, 0.5f, 0.25f},
+               {{0.5f, 0, -0.5f}, 0.875f, 0.5f}};
+  for (const auto& c : cases) {
+    const Vec3 p = sphere.center + sphere.radius * normalize(c.direction);
+    const SurfaceUv at = surface_uv(sphere, 0, p);
+    EXPECT_NEAR(at.uv.u, c.u, 1e-6f)
+        << c.direction.x << " " << c.direction.y << " " << c.direction.z;
+    EXPECT_NEAR(at.uv.v, c.v, 1e-6f)
+        << c.direction.x << " " << c.direction.y << " " << c.direction.z;
+  }
+}
+
+// per_length is the square root of the texture area over the surface area of a small patch,
+// measured here on patches of 1e-3 x 1e-3 radians at several latitudes (rate at their centres).
+TEST(SphereUv, RateIsTheSquareRootOfTheAreaRatio) {
+  Shape sphere;
+  sphere.kind = ShapeKind::kSphere;
+  sphere.radius = 0.5f;
+  const float h = 1e-3f;
+  for (const float theta : {0.1f, 0.5f, 1.0f, 1.5707964f, 2.5f}) {
+    const float phi = 0.3f;
+    const Uv a = sphere_uv(sphere, on_sphere(sphere, theta, phi));
+    const Uv b = sphere_uv(sphere, on_sphere(sphere, theta + h, phi + h));
+    const double uv_area = std::fabs(double(b.u - a.u) * double(b.v - a.v));
+    const double area =
+        double(sphere.radius) * sphere.radius * std::sin(theta + 0.5 * h) * double(h) * h;
+    const float rate =
+        surface_uv(sphere, 0, on_sphere(sphere, theta + 0.5f * h, phi + 0.5f * h)).per_length;
+    EXPECT_NEAR(rate, std::sqrt(uv_area / area), 2e-3 * rate) << "theta " << theta;
+  }
 }
 
 }  // namespace
