@@ -183,6 +183,13 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->check(finite_in_range(0, 180))
       ->capture_default_str()
       ->group(snee);
+  c.add_option("--snee-chains", snee_chains_,
+               "Whether the manifold strategy follows the light through internal reflections "
+               "inside a smooth sphere (on, the default; off leaves those paths out, to measure "
+               "them: docs/method.md 3.12)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str()
+      ->group(snee);
   c.add_option("--snee-strategies", snee_strategies_,
                "Comma-separated strategies that share the transport SNEE handles: tb "
                "(top-to-bottom), bt (bottom-to-top), ub (BSDF-sampled exit), ul (light-sampled "
@@ -255,6 +262,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   options.snee.heuristic =
       snee_heuristic_ == "power" ? MisHeuristic::kPower : MisHeuristic::kBalance;
   options.snee.enabled = parse_strategy_set(snee_strategies_);
+  options.snee.reflection_chains = snee_chains_ == "on";
   options.threads = capped_threads(options.threads);
   const bool claims_tiles = static_cast<bool>(distribution.tile_source);
   if (!claims_tiles) {
@@ -396,6 +404,8 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
 
   const std::string nonfinite = nonfinite_warning(result.stats);
   if (!nonfinite.empty()) std::fprintf(stderr, "%s\n", nonfinite.c_str());
+  const std::string dense = dense_medium_warning(result.stats);
+  if (!dense.empty()) std::fprintf(stderr, "%s\n", dense.c_str());
   const std::string engagement = snee_engagement_note(options, result.stats);
   if (!engagement.empty()) std::fprintf(stderr, "%s\n", engagement.c_str());
   write_images(result.film, images);

@@ -57,6 +57,7 @@ class RenderCommand {
   std::string snee_probe_ = "uniform";
   std::string snee_heuristic_ = "balance";
   std::string snee_strategies_ = "tb,bt,ub,ul,mn";
+  std::string snee_chains_ = "on";
   // Output images (apps/output_files.h, docs/output-images.md).
   void add_image_options(CLI::App& c);
   ToneMap preview_tone() const;

@@ -30,6 +30,9 @@ nlohmann::ordered_json snee_options_json(const SneeOptions& snee);
 // a render prints at its end ("warning: 3 of 1024 samples (0.293%) were not finite ..."), or
 // "" when every sample was finite.
 std::string nonfinite_warning(const RenderStats& stats);
+// The warning for a medium whose mean free path is too short for float precision at the scene's
+// size (RenderStats::shortest_free_path_clearances), or "".
+std::string dense_medium_warning(const RenderStats& stats);
 
 // `snee` renders as `pt` when every light looks larger than --snee-light-limit: the note it
 // prints then ("note: snee ran as pt: ..."), or "" when SNEE ran or another integrator did.

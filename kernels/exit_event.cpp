@@ -1,5 +1,8 @@
 #include "kernels/exit_event.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "kernels/bsdf/fresnel.h"
 #include "kernels/medium/free_flight.h"
 #include "kernels/medium/henyey_greenstein.h"
@@ -128,6 +131,74 @@ void connect_exit_emission(const KernelContext& ctx, const PathState& state, uin
                  shadow);
 }
 
+namespace {
+
+// The manifold strategy's reflection chains (docs/method.md 3.12): the light refracted in at y
+// and reflected specularly inside the sphere before it reaches x_j. No other strategy makes
+// these paths under a delta light, so each counts with weight 1, over the probability of having
+// searched its reflection count (`u`). The walk would have spent one depth per reflection and
+// one for the exit, so chains stop where the path tracer's depth limit would.
+void connect_reflection_chains(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                               const MediumInfo& m, const Shape& sphere,
+                               const DielectricParams& interface, const LightSample& light, float u,
+                               ShadowQueue& shadow, KernelCounters& counters) {
+  const ChainChoice choice = choose_chain_reflections(u, m.chain_search);
+  const int depth_left = ctx.max_depth - static_cast<int>(state.depth[slot]) - 1;
+  if (choice.reflections < 1 || choice.reflections > std::min(depth_left, kMaxChainReflections)) {
+    return;
+  }
+  const Vec3 x_j = state.vertex_j(slot);
+  const SphereChains chains = sphere_reflection_chains_toward_light(
+      sphere.center, sphere.radius, interface.eta, light.wi, x_j, choice.reflections);
+  for (int i = 0; i < chains.dropped; ++i) counters.count(SneeCounter::kManifoldReflectionDropped);
+  const Vec3 w_before = state.direction_in_j(slot);
+  const Rgb beta = state.throughput(slot);
+  const size_t per_chain =
+      m.manifold_interior_clear ? 1 : static_cast<size_t>(choice.reflections) + 2;
+  size_t budget = kChainSegmentBudget;
+  for (int c = 0; c < chains.count; ++c) {
+    const SphereChain& chain = chains.chain[static_cast<size_t>(c)];
+    if (per_chain > budget) {
+      counters.count(SneeCounter::kManifoldReflectionDropped);
+      continue;
+    }
+    const double cos_l = dot(chain.n, light.wi);
+    if (!(cos_l > 0)) continue;
+    // Every reflection meets the boundary at the refracted angle of the entry, so each
+    // reflects the entry's Fresnel reflectance F_r (the same from both sides of the pair).
+    const double reflectance = fresnel_dielectric(static_cast<float>(cos_l), interface.eta);
+    const double scale = hg_phase(dot(w_before, -chain.omega_last), m.g) * (1.0 - reflectance) *
+                         std::pow(reflectance, chain.reflections) * cos_l /
+                         (chain.jacobian * light.pdf * choice.probability);
+    const Rgb unweighted = beta * light.radiance *
+                           transmittance(m.sigma_t, static_cast<float>(chain.length)) *
+                           static_cast<float>(scale);
+    if (is_black(unweighted) || !is_finite(unweighted)) continue;
+    const uint32_t first =
+        shadow.add_segment(chain.y + ctx.epsilon * chain.n, light.wi, kInfinity, kVisibilityOnly);
+    uint32_t segments = 1;
+    if (!m.manifold_interior_clear) {
+      // Something reaches into the sphere: every chord can be blocked. From x_j back along the
+      // light's path, to the last reflection, then chord by chord to the entry (ends just
+      // inside).
+      const auto inner = [&](Vec3 q) { return q - ctx.epsilon * normalize(q - sphere.center); };
+      Vec3 from = x_j;
+      for (int b = chain.reflections - 1; b >= -1; --b) {
+        const Vec3 to = inner(b >= 0 ? chain.bounce[static_cast<size_t>(b)] : chain.y);
+        add_visibility_segment(shadow, from, to, 0.0f);
+        from = to;
+      }
+      segments += static_cast<uint32_t>(chain.reflections) + 1;
+    }
+    budget -= segments;
+    shadow.add_connection(
+        {ConnectionKind::kManifold, slot, first, segments, -1, unweighted, Rgb(0.0f)});
+    counters.count(SneeCounter::kManifoldReflectionConnections);
+  }
+}
+
+}  // namespace
+
 void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t slot,
                       const MediumInfo& m, ShadowQueue& shadow, KernelCounters& counters) {
   if (ctx.lights->empty() || (m.manifold_sphere < 0 && !m.manifold_unsupported)) return;
@@ -148,10 +219,7 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
       ctx.surfaces[static_cast<size_t>(m.manifold_sphere)].dielectric;
   const SphereExits exits =
       sphere_exits_toward_light(sphere.center, sphere.radius, interface.eta, light.wi, x_j);
-  if (exits.count == 0) {
-    counters.count(SneeCounter::kManifoldNoExit);
-    return;
-  }
+  if (exits.count == 0) counters.count(SneeCounter::kManifoldNoExit);
   const Vec3 w_before = state.direction_in_j(slot);
   const double curvature = 1.0 / sphere.radius;
   SneeSuffix s;
@@ -199,6 +267,10 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
           {ConnectionKind::kManifold, slot, first, 2, -1, unweighted * w, Rgb(0.0f)});
     }
     counters.count(SneeCounter::kManifoldConnections);
+  }
+  if (ctx.snee.reflection_chains) {
+    connect_reflection_chains(ctx, state, slot, m, sphere, interface, light, r.u[3], shadow,
+                              counters);
   }
 }
 

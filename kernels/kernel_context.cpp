@@ -4,6 +4,8 @@
 #include <string>
 
 #include "kernels/bsdf/fresnel.h"
+#include "kernels/snee/manifold_sphere.h"
+#include "scene/shape_bounds.h"
 
 namespace snee {
 
@@ -92,6 +94,21 @@ Rgb aov_albedo(const SurfaceInfo& info) {
   }
 }
 
+// Whether no shape but `sphere` has a bounding box that meets the sphere (a conservative test:
+// a box that only grazes it counts as reaching in).
+bool nothing_reaches_into(const Scene& s, size_t sphere) {
+  const Shape& ball = s.shapes[sphere];
+  for (size_t j = 0; j < s.shapes.size(); ++j) {
+    if (j == sphere) continue;
+    ShapeBounds box;
+    box.add(s.shapes[j]);
+    if (box.empty()) continue;
+    const Vec3 nearest = vmin(vmax(ball.center, box.lo), box.hi);
+    if (length(nearest - ball.center) <= ball.radius) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l,
@@ -146,6 +163,8 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
     if (shape.kind == ShapeKind::kSphere &&
         boundaries[static_cast<size_t>(shape.interior_medium)] == 1) {
       m.manifold_sphere = static_cast<int32_t>(i);
+      m.manifold_interior_clear = nothing_reaches_into(s, i);
+      m.chain_search = chain_search_probability(m.sigma_t, shape.radius);
     } else {
       m.manifold_unsupported = true;
     }

@@ -68,6 +68,11 @@ struct MediumInfo {
   // Whether the boundary is a smooth dielectric the manifold strategy has no solver for (a
   // mesh, or several shapes): its single-scattered light under a directional light is missing.
   bool manifold_unsupported = false;
+  // Whether no other shape reaches into manifold_sphere (no bounding box meets it), so a path
+  // inside it cannot be blocked: its reflection chains then need only their light segment.
+  bool manifold_interior_clear = false;
+  // How often a vertex searches for reflection chains (chain_search_probability).
+  double chain_search = 0.0;
 };
 
 // The stage kernels that run their queue in SIMD chunks, for lane-occupancy counters.

@@ -183,7 +183,9 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     // the probe stage reads x_i from the path's vertex memory and draws at this event.
     if (ctx.integrator == Integrator::kSnee && !m.straight_nee) {
       connect_manifold(ctx, state, s, m, q.shadow, counters);
-      q.probe.push(s);
+      // Top-to-bottom and bottom-to-top place x_j one event further and leave from it: the
+      // walk would stop at x_j if that were the depth limit, so they stop there too.
+      if (static_cast<int>(state.depth[s]) + 1 < ctx.max_depth) q.probe.push(s);
     }
     state.set_ray(s, x, {flights.wx[k], flights.wy[k], flights.wz[k]});
     state.event[s] += 1;

@@ -22,7 +22,7 @@ enum class RngPurpose : uint32_t {
   kSneeTopToBottomDistance,  // second normal number, technique, channel, distance
   kSneeBottomToTop,          // middle vertex (4)
   kSneeBottomToTopBtdf,      // outward microfacet normal (2)
-  kSneeManifold,             // the manifold strategy's light selection (3)
+  kSneeManifold,             // the manifold strategy's light selection (3), its chain choice
   kCount
 };
 

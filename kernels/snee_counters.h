@@ -31,6 +31,11 @@ enum class SneeCounter : int {
   // Medium vertices under a directional light behind a smooth boundary the manifold strategy
   // has no solver for (a mesh): their light through one refraction is not rendered.
   kManifoldUnsupportedBoundary,
+  // Manifold connections along chains of internal reflections (docs/method.md 3.12), one per
+  // chain found, and chains found but not connected: beyond the solutions kept for one
+  // reflection count, or the shadow segments one vertex may queue (both none in tests).
+  kManifoldReflectionConnections,
+  kManifoldReflectionDropped,
   kCount
 };
 inline constexpr int kSneeCounterCount = static_cast<int>(SneeCounter::kCount);
@@ -57,7 +62,9 @@ inline const char* snee_counter_name(SneeCounter c) {
                                 "manifold_connections",
                                 "manifold_occluded",
                                 "manifold_no_exit",
-                                "manifold_unsupported_boundary"};
+                                "manifold_unsupported_boundary",
+                                "manifold_reflection_connections",
+                                "manifold_reflection_dropped"};
   static_assert(sizeof(names) / sizeof(names[0]) == kSneeCounterCount);
   return names[static_cast<int>(c)];
 }

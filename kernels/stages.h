@@ -14,8 +14,8 @@ namespace snee {
 
 // Shadow segments one slot may queue in one turn: top-to-bottom and bottom-to-top (3 each) or an
 // exit event's, with room to spare, plus two per exit point of the manifold strategy and its
-// V_first selector.
-inline constexpr size_t kShadowSegmentsPerSlot = 8 + 3 * kMaxSphereExits;
+// V_first selector, plus its reflection chains (kChainSegmentBudget).
+inline constexpr size_t kShadowSegmentsPerSlot = 8 + 3 * kMaxSphereExits + kChainSegmentBudget;
 
 // The queues one work unit cycles through: the inputs of the stage table (stage_table.h) and
 // the scratch of the stages' batched passes.

@@ -44,6 +44,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
     const Shape& shape = scene.shapes[s];
     RTCGeometry geom = nullptr;
     if (shape.kind == ShapeKind::kSphere) {
+      has_spheres_ = true;
       geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
       auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
           geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1));
@@ -137,10 +138,45 @@ void EmbreeScene::intersect(const RayArrays& rays, const HitArrays& hits, unsign
     hits.prim_id[0] = rh.hit.primID;
     hits.geom_id[0] = rh.hit.geomID;
     hits.inst_id[0] = rh.hit.instID[0];
+    settle_sphere_hits(rays, hits, 1);
     return;
   }
   RTCRayHitNp np = to_embree(rays, hits);
   rtcIntersectNp(scene_, &context, &np, n);
+  settle_sphere_hits(rays, hits, n);
+}
+
+namespace {
+
+// The distance along o + t d to the sphere's surface nearest Embree's `embree_t`: both roots of
+// |o + t d - c| = r in double, in the cancellation-free form (they differ by the chord, Embree's
+// error is a few ulps), so the result depends on the ray and the sphere alone.
+float sphere_hit_distance(const Shape& sphere, Vec3 o, Vec3 d, float embree_t) {
+  const double ox = double(o.x) - sphere.center.x, oy = double(o.y) - sphere.center.y,
+               oz = double(o.z) - sphere.center.z;
+  const double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+  const double b = ox * d.x + oy * d.y + oz * d.z;
+  const double c = ox * ox + oy * oy + oz * oz - double(sphere.radius) * sphere.radius;
+  const double root = std::sqrt(std::max(0.0, b * b - a * c));
+  const double q = -(b + std::copysign(root, b));
+  if (!(q != 0.0) || !(a > 0.0)) return embree_t;
+  const double t1 = q / a, t2 = c / q;
+  return static_cast<float>(std::abs(t1 - embree_t) <= std::abs(t2 - embree_t) ? t1 : t2);
+}
+
+}  // namespace
+
+void EmbreeScene::settle_sphere_hits(const RayArrays& rays, const HitArrays& hits,
+                                     unsigned n) const {
+  if (!has_spheres_) return;
+  for (unsigned i = 0; i < n; ++i) {
+    const uint32_t geom = hits.geom_id[i];
+    if (geom == kInvalidId) continue;
+    const Shape& shape = description_->shapes[geom];
+    if (shape.kind != ShapeKind::kSphere) continue;
+    rays.tfar[i] = sphere_hit_distance(shape, {rays.org_x[i], rays.org_y[i], rays.org_z[i]},
+                                       {rays.dir_x[i], rays.dir_y[i], rays.dir_z[i]}, rays.tfar[i]);
+  }
 }
 
 void EmbreeScene::occluded(const RayArrays& rays, unsigned n) const {
@@ -173,6 +209,8 @@ bool EmbreeScene::intersect1(Vec3 org, Vec3 dir, float tnear, float tfar, float*
   *t = rh.ray.tfar;
   *geom = rh.hit.geomID;
   *prim = rh.hit.primID;
+  if (*geom != kInvalidId && description_->shapes[*geom].kind == ShapeKind::kSphere)
+    *t = sphere_hit_distance(description_->shapes[*geom], org, dir, *t);
   return rh.hit.geomID != kInvalidId;
 }
 

@@ -52,7 +52,9 @@ class EmbreeScene {
   // Closest hit for n rays; results in tfar (hit distance) and hits.geom_id/prim_id
   // (kInvalidId on a miss). `coherent` is for camera rays only. A batch of one ray goes to
   // rtcIntersect1 (and rtcOccluded1 below), so the megakernel schedule's one-slot work units
-  // issue true single-ray queries.
+  // issue true single-ray queries. The distance to a sphere is recomputed from the ray and the
+  // sphere alone (Embree's single-ray, packet and stream sphere tests round differently, and
+  // which one a ray meets depends on the batch it is in), so hits do not depend on the batch.
   void intersect(const RayArrays& rays, const HitArrays& hits, unsigned n, bool coherent) const;
   // Occlusion for n rays: tfar becomes -inf where something lies in [tnear, tfar].
   void occluded(const RayArrays& rays, unsigned n) const;
@@ -80,6 +82,8 @@ class EmbreeScene {
  private:
   friend EmbreeThroughput measure_embree_throughput(const Scene&, const EmbreeScene&, size_t, int);
 
+  void settle_sphere_hits(const RayArrays& rays, const HitArrays& hits, unsigned n) const;
+
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   const Scene* description_;
@@ -89,6 +93,7 @@ class EmbreeScene {
   };
   std::vector<std::vector<FacePlane>> face_planes_;  // per mesh shape
   float epsilon_ = 1e-4f;
+  bool has_spheres_ = false;
   Vec3 bounds_min_, bounds_max_;
 };
 

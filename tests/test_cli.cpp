@@ -433,6 +433,40 @@ TEST_F(CliTest, NonFiniteSamplesAreReported) {
   EXPECT_EQ(nlohmann::json::parse(read_file(path("f.json")))["nonfinite_samples"], 0);
 }
 
+// A medium whose mean free path is within 100 ray clearances of this scene's float precision
+// renders too dark near its boundary (docs/reliability.md): the render says so on stderr and
+// in --stats, naming the medium; a medium 1000 times thinner is not warned about.
+TEST_F(CliTest, AMeanFreePathNearTheRayClearanceIsWarnedAbout) {
+  const auto scene = [](const char* sigma_s) {
+    return std::string(R"({
+    "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0], "fov": 40, "resolution": [8, 8]},
+    "lights": [{"type": "constant", "radiance": 1}],
+    "materials": [{"name": "glass", "type": "dielectric", "ior": 1.5}],
+    "media": [{"name": "chalk", "sigma_s": )") +
+           sigma_s + R"(, "sigma_a": 0}],
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "glass",
+                "medium": "chalk"}]})";
+  };
+  write_file(path("dense.json"), scene("1e6"));
+  const Outcome dense =
+      snee("render dense.json --spp 1 --max-depth 64 --quiet -o d.exr --stats d.json");
+  ASSERT_EQ(dense.exit_code, 0) << dense.output;
+  EXPECT_TRUE(contains(dense.output, "warning: the mean free path of medium 'chalk' is only"))
+      << dense.output;
+  const double clearances =
+      nlohmann::json::parse(read_file(path("d.json")))["shortest_free_path_clearances"];
+  EXPECT_GT(clearances, 0.5);
+  EXPECT_LT(clearances, 2.0);  // 1e-6 against 4 float epsilons of a scene of extent 2
+
+  write_file(path("thin.json"), scene("1e3"));
+  const Outcome thin =
+      snee("render thin.json --spp 1 --max-depth 64 --quiet -o t.exr --stats t.json");
+  ASSERT_EQ(thin.exit_code, 0) << thin.output;
+  EXPECT_FALSE(contains(thin.output, "mean free path")) << thin.output;
+  EXPECT_GT(nlohmann::json::parse(read_file(path("t.json")))["shortest_free_path_clearances"],
+            100.0);
+}
+
 // Under only wide lights snee says that it ran as pt, and --stats records it; the limit option
 // brings SNEE back and is checked like every number on the command line.
 TEST_F(CliTest, SneeSaysWhenItRanAsThePathTracer) {

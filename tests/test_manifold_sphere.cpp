@@ -12,6 +12,7 @@
 #include "kernels/snee/manifold_sphere.h"
 #include "kernels/snee/snee_pdfs.h"
 #include "tests/support/chi2.h"
+#include "tests/support/manifold_sphere_setup.h"
 #include "tests/support/statistics.h"
 
 namespace snee {
@@ -19,15 +20,11 @@ namespace {
 
 using test::TestRng;
 
-const Vec3 kCentre{0.3f, -0.2f, 0.1f};
-constexpr float kRadius = 1.3f;
-constexpr float kEta = 1.5f;
-
+const Vec3 kCentre = test::kManifoldCentre;
+constexpr float kRadius = test::kManifoldRadius;
+constexpr float kEta = test::kManifoldEta;
 Vec3 random_inside(TestRng& rng) {
-  for (;;) {
-    const Vec3 p{2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 2 * rng.uniform() - 1};
-    if (dot(p, p) < 1) return kCentre + p * kRadius;
-  }
+  return test::random_inside_manifold_sphere(rng);
 }
 
 // The light refracted into the sphere at outward normal n: the inside propagation direction.

@@ -96,34 +96,33 @@ TEST_P(Schedules, MixedMediaAndMaterialsInOneChunkGiveIdenticalBytes) {
   EXPECT_TRUE(test::bitwise_identical(local.film, render(scene, o).film));
 }
 
-// Embree's sphere primitive rounds differently in its single-ray and packet intersectors (about
-// one ray in ten differs in the last bits of its hit distance), so there the megakernel traces
-// the same estimator along slightly different paths: the wavefront schedules must agree
-// bitwise, the megakernel within noise.
-TEST_P(Schedules, WavefrontSchedulesAgreeBitwiseAndTheMegakernelWithinNoiseOnASphere) {
-  const Scene scene = small_scene("builtin:sphere-cone-r0.04", 32);
-  RenderOptions base = small_options(GetParam());
-  base.spp = 8;
-  const RenderResult reference = render(scene, base);
-  for (const int threads : {1, 2}) {
-    RenderOptions o = base;
-    o.schedule = "global";
-    o.threads = threads;
-    EXPECT_TRUE(test::bitwise_identical(reference.film, render(scene, o).film))
-        << threads << " threads";
+// Embree's sphere primitive rounds differently in its single-ray, packet and stream intersectors
+// (about one ray in ten differs in the last bits of its hit distance), and which one a ray meets
+// depends on its batch; the distance to a sphere is recomputed from the ray and the sphere alone
+// (EmbreeScene::intersect), so every schedule and batch size gives the same bits there too. The
+// second scene runs SNEE's manifold strategy and its reflection chains.
+TEST_P(Schedules, EveryScheduleAndBatchSizeAgreesBitwiseOnASphere) {
+  for (const char* name : {"builtin:sphere-cone-r0.04", "builtin:sphere-directional-smooth"}) {
+    const Scene scene = small_scene(name, 32);
+    RenderOptions base = small_options(GetParam());
+    base.spp = 8;
+    const RenderResult reference = render(scene, base);
+    for (const char* schedule : {"global", "megakernel"}) {
+      for (const int threads : {1, 2}) {
+        RenderOptions o = base;
+        o.schedule = schedule;
+        o.threads = threads;
+        EXPECT_TRUE(test::bitwise_identical(reference.film, render(scene, o).film))
+            << name << " " << schedule << ", " << threads << " threads";
+      }
+    }
+    for (const int capacity : {16, 37, 1024}) {
+      RenderOptions o = base;
+      o.queue_capacity = capacity;
+      EXPECT_TRUE(test::bitwise_identical(reference.film, render(scene, o).film))
+          << name << " queue capacity " << capacity;
+    }
   }
-  RenderOptions o = base;
-  o.schedule = "megakernel";
-  o.threads = 2;
-  const RenderResult mega = render(scene, o);
-  EXPECT_EQ(mega.stats.paths, reference.stats.paths);
-  const std::vector<bool> all(reference.film.mean.size(), true);
-  const test::RegionStats a = test::region_mean(reference.film, all);
-  const test::RegionStats b = test::region_mean(mega.film, all);
-  ASSERT_GT(a.standard_error, 0.0);
-  EXPECT_LT(std::fabs(a.mean - b.mean), 4 * std::sqrt(a.standard_error * a.standard_error +
-                                                      b.standard_error * b.standard_error))
-      << a.mean << " vs " << b.mean;
 }
 
 TEST(ScheduleStats, MegakernelHoldsOnePathAtATimeAndTheWavefrontBatches) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 #include "scene/math.h"
 
@@ -39,5 +40,67 @@ SphereExits sphere_exits_toward_light(Vec3 centre, float radius, float eta, Vec3
 // length in every tangent direction (1 / radius for a sphere, 0 for a flat triangle, where it
 // is the cosine |n . omega_r|). Zero on the caustic.
 double refraction_volume_jacobian(Vec3 n, Vec3 light, float eta, double curvature, double t);
+
+// Internal reflections a chain of the manifold strategy may have (docs/method.md 3.12), and the
+// most solutions kept for one reflection count (more are counted as dropped; none seen in tests).
+inline constexpr int kMaxChainReflections = 16;
+inline constexpr int kMaxChainsPerReflectionCount = 24;
+// Shadow segments the chains of one medium vertex may queue: one per chain (its light segment)
+// when nothing else reaches into the sphere, one per chord more otherwise; chains beyond it are
+// counted as dropped.
+inline constexpr size_t kChainSegmentBudget = 32;
+
+// The refracted light entering at y, reflected specularly inside the sphere `reflections`
+// times (at bounce[0], bounce[1], ... in the light's order), reaching x on its last chord.
+struct SphereChain {
+  int reflections = 0;
+  Vec3 y;                                           // where the light refracts in
+  Vec3 n;                                           // outward normal there
+  std::array<Vec3, kMaxChainReflections> bounce{};  // reflection points, from y toward x
+  Vec3 omega_last;      // unit propagation direction on the last chord (toward x)
+  double t_last = 0;    // |x - last reflection point|
+  double length = 0;    // path length inside, y to x
+  double jacobian = 0;  // dV(x) / (dA(y) dt), see sphere_chain_volume_jacobian
+};
+
+struct SphereChains {
+  std::array<SphereChain, kMaxChainsPerReflectionCount> chain{};
+  int count = 0;
+  int dropped = 0;  // solutions beyond kMaxChainsPerReflectionCount
+};
+
+// Which chains a medium vertex looks for (docs/method.md 3.12): with probability `search` it
+// searches one reflection count m >= 1, drawn with P(m) = 2 / (m (m + 1)) - 2 / ((m + 1) (m + 2))
+// (so P(m >= k) = 2 / (k (k + 1))): heavy-tailed enough that the long chains of a clear medium
+// keep bounded weights, cheap on average (the search's cost grows with m, and the mean m is below
+// 2). Counts above kMaxChainReflections are not searched (their share is measured in
+// docs/method.md 3.12).
+struct ChainChoice {
+  int reflections = 0;       // 0: no search at this vertex
+  double probability = 0.0;  // of this choice, the search probability included
+};
+ChainChoice choose_chain_reflections(float u, double search);
+// P(m) of the choice above for m >= 1, the search probability included.
+double chain_reflections_probability(int reflections, double search);
+// The search probability for a sphere of this radius filled with this medium: chains carry
+// light over at least one extra chord, so their share of a vertex's light falls with the
+// medium's optical size; the clearest channel sets it, between 1/32 and 1/2.
+double chain_search_probability(Rgb sigma_t, float radius);
+
+// Every chain with exactly `reflections` (1 to kMaxChainReflections) internal reflections along
+// which the directional light (light = unit direction toward it), refracted into the sphere at a
+// point facing it, reaches x inside. The chain stays in the plane of the light direction and
+// x - centre, and every reflection keeps the ray's angular momentum about the centre; that leaves
+// one equation in the entry angle, whose roots are isolated with a bound on its curvature, so
+// none is missed (docs/method.md 3.12). None when x lies on the axis.
+SphereChains sphere_reflection_chains_toward_light(Vec3 centre, float radius, float eta, Vec3 light,
+                                                   Vec3 x, int reflections);
+
+// |dV(x) / (dA(y) dt)| for x = P_m(y) + t omega_m(y), the last chord of the chain that enters a
+// sphere at y (outward normal n) and reflects `reflections` times, t measured in units of the
+// radius (the value does not depend on the radius). Differentiated exactly by forward-mode
+// dual numbers; for no reflection it equals refraction_volume_jacobian with curvature 1 / radius.
+double sphere_chain_volume_jacobian(Vec3 n, Vec3 light, float eta, int reflections,
+                                    double t_over_radius);
 
 }  // namespace snee

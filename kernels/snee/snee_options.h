@@ -71,6 +71,10 @@ struct SneeOptions {
   // otherwise `snee` renders exactly as `pt`. The default is measured (docs/method.md 3.11);
   // 180 keeps SNEE on under any light.
   float light_limit_degrees = kDefaultLightLimitDegrees;
+  // Whether the manifold strategy also follows the light through internal reflections before it
+  // reaches x_j (docs/method.md 3.12). Those paths have no other strategy under a delta light,
+  // so turning this off leaves them out: it exists to measure what they add.
+  bool reflection_chains = true;
 };
 
 // Parses a comma-separated list of tb, bt, ub, ul (e.g. "tb,bt"); throws std::invalid_argument
