@@ -1,6 +1,7 @@
 #include "apps/output_files.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -42,9 +43,10 @@ uintmax_t with_headroom(uintmax_t raw) {
 
 }  // namespace
 
-fs::path partial_path(const fs::path& file) {
+// The partial path of `file` for the process `pid` (partial_path's name for that process).
+fs::path partial_path_of(const fs::path& file, long pid) {
   std::string suffix(1, '.');
-  suffix.append(std::to_string(::getpid())).append(".partial").append(file.extension().string());
+  suffix.append(std::to_string(pid)).append(".partial").append(file.extension().string());
   std::string stem = file.stem().string();
   const size_t room = NAME_MAX - 1 - suffix.size();
   if (stem.size() > room) {
@@ -59,8 +61,45 @@ fs::path partial_path(const fs::path& file) {
   return file.parent_path() / name;
 }
 
+fs::path partial_path(const fs::path& file) {
+  return partial_path_of(file, ::getpid());
+}
+
+void remove_stale_partial_files(const fs::path& file, std::chrono::seconds min_age) {
+  const fs::path extension_tail = ".partial" + file.extension().string();
+  std::error_code ec;
+  const auto now = fs::file_time_type::clock::now();
+  for (fs::directory_iterator it(directory_of(file), ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::string tail = extension_tail.string();
+    if (name.size() <= tail.size() || name.front() != '.' ||
+        name.compare(name.size() - tail.size(), tail.size(), tail) != 0) {
+      continue;
+    }
+    // ".<stem>.<pid>.partial<ext>": the pid is the last dot-separated field before the tail.
+    const std::string head = name.substr(0, name.size() - tail.size());
+    const size_t dot = head.rfind('.');
+    if (dot == std::string::npos || dot + 1 >= head.size()) continue;
+    const std::string digits = head.substr(dot + 1);
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::stol(digits);
+    // Only this file's name for that process, a process that no longer exists, and a file old
+    // enough that no writer on another host sharing the directory can still be at it.
+    if (pid == ::getpid() || partial_path_of(file, pid).filename() != it->path().filename()) {
+      continue;
+    }
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+    std::error_code time_ec;
+    const auto written = fs::last_write_time(it->path(), time_ec);
+    if (time_ec || now - written < min_age) continue;
+    std::error_code ignored;
+    fs::remove(it->path(), ignored);
+  }
+}
+
 void replace_file(const fs::path& file, const std::function<void(const std::string&)>& write) {
   create_directory_of(file);
+  remove_stale_partial_files(file, kStalePartialAge);
   const fs::path partial = partial_path(file);
   const FileInFlight in_flight(partial.string());
   try {

@@ -4,6 +4,7 @@
 // (and by a second Ctrl-C, interrupt_request.h).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -18,9 +19,16 @@ namespace snee {
 // format by it), never longer than NAME_MAX whatever the length of `file`'s name.
 std::filesystem::path partial_path(const std::filesystem::path& file);
 
+// Removes the partial files of `file` left by processes that no longer exist (killed outright
+// while writing: SIGKILL, the out-of-memory killer) and last written at least `min_age` ago,
+// so that no writer on another host sharing the directory loses its file.
+inline constexpr std::chrono::seconds kStalePartialAge{600};
+void remove_stale_partial_files(const std::filesystem::path& file, std::chrono::seconds min_age);
+
 // Writes `file` as a whole: `write` writes the partial_path, which is then renamed over
 // `file`; creates the directory if it is missing (it may have been removed since the last
-// write). Throws std::runtime_error naming the file, leaving no partial file behind.
+// write). Throws std::runtime_error naming the file, leaving no partial file behind; partial
+// files of `file` that dead processes left are removed first (remove_stale_partial_files).
 void replace_file(const std::filesystem::path& file,
                   const std::function<void(const std::string&)>& write);
 

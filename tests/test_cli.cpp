@@ -1,5 +1,9 @@
 // The snee binary as a user meets it: help, usage errors, scene errors and a tiny render whose
 // outputs are read back.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <filesystem>
@@ -372,6 +376,48 @@ TEST(OutputFiles, AFailedWriteLeavesNoPartialFile) {
                std::runtime_error);
   EXPECT_EQ(read_file(file), "old");
   EXPECT_TRUE(only_final_files(dir));
+  fs::remove_all(dir);
+}
+
+// A process killed outright while writing (SIGKILL, the out-of-memory killer) leaves its partial
+// file; the next write of the same file removes it once its process is gone and it is old
+// enough that no writer on another host can still be at it. A live process's partial file, a
+// fresh one and another file's stay.
+TEST(OutputFiles, PartialFilesOfDeadProcessesAreRemoved) {
+  const fs::path dir = fs::temp_directory_path() / "snee_stale_partials";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path file = dir / "a.exr";
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ASSERT_GT(dead, 0);
+  ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+  const auto name_for = [&](const fs::path& f, pid_t pid) {
+    return dir / ("." + f.stem().string() + "." + std::to_string(pid) + ".partial" +
+                  f.extension().string());
+  };
+  const auto age = [](const fs::path& p, std::chrono::seconds by) {
+    fs::last_write_time(p, fs::file_time_type::clock::now() - by);
+  };
+  const fs::path stale = name_for(file, dead), live = name_for(file, ::getppid()),
+                 other = name_for(dir / "b.exr", dead);
+  ASSERT_EQ(partial_path(file).filename(), name_for(file, ::getpid()).filename());
+  for (const fs::path& p : {stale, live, other}) {
+    write_file(p, "half");
+    age(p, std::chrono::hours(2));
+  }
+  remove_stale_partial_files(file, kStalePartialAge);
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_TRUE(fs::exists(other));
+  // A dead process's file written just now (a writer elsewhere may still own it) stays.
+  write_file(stale, "half");
+  remove_stale_partial_files(file, kStalePartialAge);
+  EXPECT_TRUE(fs::exists(stale));
+  age(stale, std::chrono::hours(2));
+  replace_file(file, [](const std::string& partial) { write_file(partial, "whole"); });
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_EQ(read_file(file), "whole");
   fs::remove_all(dir);
 }
 
