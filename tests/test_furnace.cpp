@@ -4,6 +4,7 @@
 // unbiased integrator. (Surfaces that absorb nothing: tests/test_material_render.cpp.)
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -58,6 +59,17 @@ int64_t wrong_samples(const Film& film, int spp) {
   return wrong;
 }
 
+// The largest deviation of any pixel's channel from 1: issue 10 asks for the closed furnace to
+// be exact to 1e-6 in every pixel, a bound a single wrong sample in 4096 (2.4e-4) far exceeds
+// and the float rounding of a mean of ones (~1e-7) stays under.
+double largest_deviation(const Film& film) {
+  double largest = 0;
+  for (const Rgb& m : film.mean) {
+    for (const float c : {m.x, m.y, m.z}) largest = std::max(largest, std::fabs(c - 1.0));
+  }
+  return largest;
+}
+
 // The closed bunny's thin ear: ray origins offset by a fixed 1e-4 of the scene (not by the
 // hit's float error), from hit points with the error of the whole ray's length, crossed it
 // wrongly in 10 of these 4.2M paths (2.3 per million); then 2 (rays through a shared edge that
@@ -69,6 +81,7 @@ TEST(FurnaceCrossing, BunnyPathsCrossItsSurfaceTheRightWay) {
   options.seed = 7;
   const Film film = render(scene, options).film;
   EXPECT_EQ(wrong_samples(film, options.spp), 0);
+  EXPECT_LT(largest_deviation(film), 1e-6);
 }
 
 // Rays that graze a silhouette edge of the bunny, where they enter and leave within float
@@ -82,6 +95,7 @@ TEST(FurnaceCrossing, BunnyGrazingRaysDoNotExitWithoutEntering) {
   options.seed = 1;
   const Film film = render(scene, options).film;
   EXPECT_EQ(wrong_samples(film, options.spp), 0);
+  EXPECT_LT(largest_deviation(film), 1e-6);
 }
 
 // Rays found by that render (seed 7, pixels (42, 39) and (24, 27) at 4096 spp) that pass within
