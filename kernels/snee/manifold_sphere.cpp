@@ -93,6 +93,32 @@ Poly trimmed(Poly p) {
   return p;
 }
 
+// The root of f in [a, b], where f(a) and f(b) differ in sign (f returns the value and writes
+// the derivative): Newton inside the shrinking bracket, bisecting whenever a step would leave
+// it, until a step is below `tolerance` relative to 1 + |u|.
+template <class F>
+double bracketed_root(const F& f, double a, double b, double fa, double tolerance) {
+  double u = 0.5 * (a + b);
+  for (int it = 0; it < 100; ++it) {
+    double df = 0;
+    const double fu = f(u, &df);
+    if (fu == 0) break;
+    if ((fu < 0) == (fa < 0)) {
+      a = u;
+      fa = fu;
+    } else {
+      b = u;
+    }
+    double next = df != 0 ? u - fu / df : 0.5 * (a + b);
+    if (!(next > a && next < b)) next = 0.5 * (a + b);
+    if (next == u || !(b > a)) break;
+    const bool converged = std::abs(next - u) <= tolerance * (1.0 + std::abs(u));
+    u = next;
+    if (converged) break;
+  }
+  return u;
+}
+
 struct Roots {
   std::array<double, 8> u{};
   int count = 0;
@@ -116,29 +142,16 @@ Roots real_roots(const Poly& p_in, double lo, double hi) {
   knots[knot_count++] = hi;
   const Poly dp = derivative(p);
   for (int i = 0; i + 1 < knot_count; ++i) {
-    double a = knots[i], b = knots[i + 1];
-    double fa = eval(p, a);
+    const double a = knots[i], b = knots[i + 1];
+    const double fa = eval(p, a);
     const double fb = eval(p, b);
     if (!((fa < 0 && fb > 0) || (fa > 0 && fb < 0))) continue;
-    // Newton inside the shrinking bracket, bisecting whenever a step would leave it.
-    double u = 0.5 * (a + b);
-    for (int it = 0; it < 100; ++it) {
-      const double f = eval(p, u);
-      if (f == 0) break;
-      if ((f < 0) == (fa < 0)) {
-        a = u;
-        fa = f;
-      } else {
-        b = u;
-      }
-      const double df = eval(dp, u);
-      double next = df != 0 ? u - f / df : 0.5 * (a + b);
-      if (!(next > a && next < b)) next = 0.5 * (a + b);
-      if (next == u || b - a <= 0) break;
-      const bool converged = std::abs(next - u) <= 1e-15 * (1.0 + std::abs(u));
-      u = next;
-      if (converged) break;
-    }
+    const double u = bracketed_root(
+        [&](double x, double* df) {
+          *df = eval(dp, x);
+          return eval(p, x);
+        },
+        a, b, fa, 1e-15);
     out.u[out.count++] = u;
   }
   return out;
@@ -317,31 +330,6 @@ struct ChainEquation {
   static constexpr double kPiD = 3.14159265358979323846;
 };
 
-// The root of f in [a, b], where f(a) and f(b) differ in sign: Newton, bisecting whenever a
-// step would leave the shrinking bracket.
-template <class F>
-double bracketed_root(const F& f, double a, double b, double fa) {
-  double u = 0.5 * (a + b);
-  for (int it = 0; it < 100; ++it) {
-    double df = 0;
-    const double fu = f(u, &df);
-    if (fu == 0) break;
-    if ((fu < 0) == (fa < 0)) {
-      a = u;
-      fa = fu;
-    } else {
-      b = u;
-    }
-    double next = df != 0 ? u - fu / df : 0.5 * (a + b);
-    if (!(next > a && next < b)) next = 0.5 * (a + b);
-    if (next == u || !(b > a)) break;
-    const bool converged = std::abs(next - u) <= 1e-14 * (1.0 + std::abs(u));
-    u = next;
-    if (converged) break;
-  }
-  return u;
-}
-
 // A bound on |F''| over the whole domain, from |psi'| <= 1 + (2m + 1) e / k_min and
 // |psi''| <= (2m + 1) e (1 / k_min + e^2 / k_min^3), k_min = sqrt(1 - e^2):
 // F'' = rho (-sin(psi - chi) psi'^2 + cos(psi - chi) psi'') + e sin(phi).
@@ -407,7 +395,7 @@ class ChainRootFinder {
     if ((a.f < 0) != (b.f < 0)) {
       if ((a.df > 0) == (b.df > 0) && std::abs(a.df) + std::abs(b.df) > c_ * h) {
         add(bracketed_root([this](double phi, double* df) { return eq_.value(phi, df); }, a.phi,
-                           b.phi, a.f));
+                           b.phi, a.f, 1e-14));
         return;
       }
     } else {
