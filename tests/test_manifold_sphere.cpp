@@ -1,6 +1,6 @@
 // The manifold strategy's exit-point solver and volume Jacobian on the smooth sphere
-// (docs/method.md 3.10), and its place in the MIS weights: every solution obeys Snell's law,
-// every exit point a forward-traced refracted ray passes through is found again, the Jacobian
+// (docs/method.md 3.10), and its place in the MIS weights: every solution obeys Snell's law
+// (completeness is tested with the reflection chains'), the Jacobian
 // agrees with finite differences of the map (y, t) -> x and integrates to the sphere's volume,
 // and top-to-bottom and the manifold strategy share case-D suffixes with weights summing to one.
 #include <gtest/gtest.h>
@@ -19,13 +19,7 @@ namespace snee {
 namespace {
 
 using test::TestRng;
-
-const Vec3 kCentre = test::kManifoldCentre;
-constexpr float kRadius = test::kManifoldRadius;
-constexpr float kEta = test::kManifoldEta;
-Vec3 random_inside(TestRng& rng) {
-  return test::random_inside_manifold_sphere(rng);
-}
+using namespace test::manifold_sphere;
 
 // The light refracted into the sphere at outward normal n: the inside propagation direction.
 Vec3 refracted_light(Vec3 light, Vec3 n, float eta = kEta) {
@@ -55,36 +49,9 @@ TEST(ManifoldSphere, SolutionsObeySnellsLaw) {
   EXPECT_GT(solutions, 15000);
 }
 
-// Forward: an exit point y facing the light and a distance along its refracted ray inside the
-// sphere give x; the solver from x must return y (completeness, so no solution is missed). The
-// float x lies up to ~1e-7 off the exact ray, which near the caustic (where two solutions merge,
-// J -> 0) can remove the pair: such misses are allowed only there, and must be rare (the ray
-// sampling used here concentrates near the caustic like 1 / J, the renderer's x does not).
-TEST(ManifoldSphere, FindsEveryForwardTracedExit) {
-  TestRng rng(2);
-  int near_caustic_misses = 0;
-  constexpr int kSamples = 20000;
-  for (int k = 0; k < kSamples; ++k) {
-    const Vec3 light = sample_uniform_sphere(rng.uniform2());
-    Vec3 n = sample_uniform_sphere(rng.uniform2());
-    if (dot(n, light) < 0) n = -n;
-    const Vec3 y = kCentre + n * kRadius;
-    const Vec3 w = refracted_light(light, n);
-    const float chord = -2 * kRadius * dot(n, w);
-    const float t = chord * (0.001f + 0.998f * rng.uniform());
-    const Vec3 x = y + w * t;
-    const SphereExits exits = sphere_exits_toward_light(kCentre, kRadius, kEta, light, x);
-    bool found = false;
-    for (int i = 0; i < exits.count; ++i)
-      found = found || length(exits.exit[static_cast<size_t>(i)].y - y) < 1e-3f;
-    if (found) continue;
-    const double relative_j =
-        refraction_volume_jacobian(n, light, kEta, 1.0 / kRadius, t) / -dot(n, w);
-    ASSERT_LT(relative_j, 0.02) << "exit " << k << " not found among " << exits.count;
-    ++near_caustic_misses;
-  }
-  EXPECT_LT(near_caustic_misses, kSamples / 1000);
-}
+// Completeness of the solver (every exit point a forward-traced refracted ray passes through is
+// found again) is tested with the reflection chains', as their case of no reflection:
+// ManifoldChains.FindsEveryForwardTracedPath in tests/test_manifold_chains.cpp.
 
 // |det(dx/du, dx/dv, dx/dt)| for x = y(u, v) + t omega_r(y(u, v)), with (u, v) arc lengths on the
 // sphere around y, by central differences.
