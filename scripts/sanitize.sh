@@ -5,10 +5,11 @@
 #
 #   bash scripts/sanitize.sh [--ci] [CTEST_ARGUMENT ...]
 #
-# --ci builds and runs only the tests of the scene and physics layers (tests/CMakeLists.txt's
-# snee_tests_scene and snee_tests_physics: every reader of user input, the BSDFs, media,
-# lights and SNEE's math), the part that fits CI's budget (.ci/README.md); the kernels,
-# scheduler and CLI tests need the whole instrumented build, which takes longer than CI has.
+# --ci builds and runs only the tests of the scene, physics and kernels layers
+# (tests/CMakeLists.txt's snee_tests_scene, snee_tests_physics and snee_tests_kernels: every
+# reader of user input, the BSDFs, media, lights, SNEE's math and the batched stage code), the
+# part that fits CI's budget (.ci/README.md); the scheduler and CLI tests need the whole
+# instrumented build, which takes longer than CI has.
 #
 # The benchmarks are not built: their smoke runs exercise nothing the tests do not, and their
 # build would add minutes to CI.
@@ -19,7 +20,7 @@ targets=(all)
 ctest_scope=()
 if [[ ${1:-} == --ci ]]; then
   shift
-  targets=(snee_tests_scene snee_tests_physics)
+  targets=(snee_tests_scene snee_tests_physics snee_tests_kernels)
   # Tests of executables this build skipped are registered as <target>_NOT_BUILT.
   ctest_scope=(-E '_NOT_BUILT$')
 fi
