@@ -150,7 +150,7 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
   const Vec3 x_j = state.vertex_j(slot);
   const SphereChains chains = sphere_reflection_chains_toward_light(
       sphere.center, sphere.radius, interface.eta, light.wi, x_j, choice.reflections);
-  for (int i = 0; i < chains.dropped; ++i) counters.count(SneeCounter::kManifoldReflectionDropped);
+  counters.count(SneeCounter::kManifoldReflectionDropped, static_cast<uint64_t>(chains.dropped));
   const Vec3 w_before = state.direction_in_j(slot);
   const Rgb beta = state.throughput(slot);
   const size_t per_chain =

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <numbers>
 
 namespace snee {
 
@@ -319,15 +320,16 @@ struct ChainEquation {
     const double s = std::sin(phi), c = std::cos(phi);
     const double moment = e * s;
     const double k = std::sqrt(1.0 - moment * moment);
-    const double psi = phi + (m + 1) * kPiD - (2 * m + 1) * std::asin(moment);
+    const double psi = direction_angle(phi, moment);
     const double dpsi = 1.0 - (2 * m + 1) * e * c / k;
     *derivative = rho * std::cos(psi - chi) * dpsi - e * c;
     return rho * std::sin(psi - chi) - moment;
   }
-  double psi(double phi) const {
-    return phi + (m + 1) * kPiD - (2 * m + 1) * std::asin(e * std::sin(phi));
+  double psi(double phi) const { return direction_angle(phi, e * std::sin(phi)); }
+  double direction_angle(double phi, double moment) const {
+    return phi + (m + 1) * kPiD - (2 * m + 1) * std::asin(moment);
   }
-  static constexpr double kPiD = 3.14159265358979323846;
+  static constexpr double kPiD = std::numbers::pi;
 };
 
 // A bound on |F''| over the whole domain, from |psi'| <= 1 + (2m + 1) e / k_min and
