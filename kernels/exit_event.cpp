@@ -77,10 +77,10 @@ ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint
     e.light_handled_elsewhere = leaving_medium && after_medium_vertex;
     return e;
   }
-  // SNEE's probe never takes a smooth-shaded boundary (snee_probe.cpp), so its exits keep the
-  // path tracer's own weights.
+  // SNEE's probe never takes a smooth-shaded or roughness-textured boundary (snee_probe.cpp), so
+  // its exits keep the path tracer's own weights.
   if (ctx.integrator != Integrator::kSnee || !leaving_medium || !after_medium_vertex ||
-      (flags & kPathMediumVertexI) == 0 || info.smooth_shading) {
+      (flags & kPathMediumVertexI) == 0 || !info.uniform_boundary()) {
     return e;
   }
   e.snee_possible = true;

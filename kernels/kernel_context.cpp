@@ -145,6 +145,8 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
     info.aov_albedo = aov_albedo(info);
     info.closed = shape.closed;
     info.albedo_texture = mat.albedo_texture;
+    info.roughness_texture = mat.roughness_texture;
+    info.roughness_texture_squared = mat.roughness_texture_squared;
     surfaces.push_back(info);
     if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
     if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {

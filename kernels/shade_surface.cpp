@@ -39,7 +39,9 @@ void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQue
     const auto [p, normal] = ctx.embree->surface_point(
         geom, state.hit_prim[s], state.origin(s) + state.direction(s) * state.hit_t[s]);
     const SurfaceInfo& info = ctx.surfaces[geom];
-    if (info.kind == MaterialKind::kDielectric) lane_interface = info.dielectric;
+    if (info.kind == MaterialKind::kDielectric) {
+      lane_interface = dielectric_at(ctx, info, geom, state.hit_prim[s], p);
+    }
     const Vec3 shading = shading_normal(ctx, geom, state.hit_prim[s], p, normal);
     out.px[k] = p.x, out.py[k] = p.y, out.pz[k] = p.z;
     out.nx[k] = normal.x, out.ny[k] = normal.y, out.nz[k] = normal.z;

@@ -58,12 +58,13 @@ void snee_probe(const KernelContext& ctx, PathState& state, StageQueues& q,
     }
     // x_k must be on this medium's own dielectric boundary, reached from inside; anything else
     // is a failed probe (pdf 0 for both strategies; the path tracer still covers that
-    // transport). A smooth-shaded boundary is left to the path tracer (docs/method.md 4.9).
+    // transport). A smooth-shaded boundary, or one with a roughness texture, is left to the path
+    // tracer (docs/method.md 4.9, 4.10).
     const SurfaceInfo& info = ctx.surfaces[geom];
     const auto [x_k, n_k] = ctx.embree->surface_point(
         geom, rays.prim(i), rays.origin(i) + rays.direction(i) * rays.tfar(i));
     if (info.kind != MaterialKind::kDielectric || info.interior_medium != state.medium[s] ||
-        info.smooth_shading || dot(rays.direction(i), n_k) <= 0) {
+        !info.uniform_boundary() || dot(rays.direction(i), n_k) <= 0) {
       counters.count(SneeCounter::kProbeOtherSurface);
       continue;
     }

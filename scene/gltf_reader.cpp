@@ -191,7 +191,8 @@ class GltfReader {
 
   // The decoded image of a material's texture, as an index into GltfAsset::textures. glTF
   // stores base colour textures sRGB-encoded, as rgb_image_io.h takes 8- and 16-bit images.
-  int texture_image(const tinygltf::TextureInfo& info, const std::string& where) {
+  int texture_image(const tinygltf::TextureInfo& info, const std::string& where,
+                    PixelValues values = PixelValues::kColour) {
     if (info.texCoord != 0) {
       fail(where, "texCoord " + std::to_string(info.texCoord) +
                       ": snee reads only the first set of texture coordinates (TEXCOORD_0)");
@@ -222,7 +223,7 @@ class GltfReader {
       out.wrap_v = wrap_mode(sampler.wrapT);
     }
     const auto image_index = static_cast<size_t>(texture.source);
-    const std::tuple key{image_index, out.wrap_u, out.wrap_v};
+    const std::tuple key{image_index, out.wrap_u, out.wrap_v, values};
     const auto cached = texture_of_image_.find(key);
     if (cached != texture_of_image_.end()) return cached->second;
     const tinygltf::Image& image = model_.images[image_index];
@@ -238,7 +239,7 @@ class GltfReader {
     }
     try {
       out.image = decode_rgb_image(std::string(image.image.begin(), image.image.end()), name,
-                                   "texture", budget_);
+                                   "texture", budget_, values);
     } catch (const SceneError& e) {
       fail(texture_element, e.what());
     }
@@ -260,6 +261,17 @@ class GltfReader {
     }
   }
 
+  // A dielectric's or conductor's GGX alpha, roughnessFactor^2, and its metallic-roughness
+  // texture, whose green channel g gives alpha = (roughnessFactor g)^2 at a hit.
+  void set_roughness(const tinygltf::PbrMetallicRoughness& pbr, const std::string& pbr_path,
+                     float alpha, Material& surface) {
+    surface.roughness = alpha;
+    if (pbr.metallicRoughnessTexture.index < 0) return;
+    surface.roughness_texture = texture_image(
+        pbr.metallicRoughnessTexture, pbr_path + ".metallicRoughnessTexture", PixelValues::kData);
+    surface.roughness_texture_squared = true;
+  }
+
   void read_material(size_t index) {
     const tinygltf::Material& m = model_.materials[index];
     const std::string element = indexed("materials", index);
@@ -273,11 +285,12 @@ class GltfReader {
     }
     check_unit(pbr_path + ".metallicFactor", pbr.metallicFactor);
     check_unit(pbr_path + ".roughnessFactor", pbr.roughnessFactor);
-    if (pbr.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
-        m.emissiveTexture.index >= 0 || m.occlusionTexture.index >= 0) {
+    if (m.normalTexture.index >= 0 || m.emissiveTexture.index >= 0 ||
+        m.occlusionTexture.index >= 0) {
       warn(element,
-           "metallic-roughness, normal, emissive and occlusion textures are ignored (snee reads "
-           "only base colour textures of diffuse materials); the constant factors are used");
+           "normal, emissive and occlusion textures are ignored (snee reads base colour textures "
+           "of diffuse materials and the roughness of metallic-roughness textures); the constant "
+           "factors are used");
     }
     const Rgb base_color = factor_rgb(pbr.baseColorFactor, Rgb(1.0f));
     const float alpha = static_cast<float>(pbr.roughnessFactor * pbr.roughnessFactor);
@@ -292,7 +305,7 @@ class GltfReader {
       out.surface.kind = MaterialKind::kDielectric;
       out.surface.ior = static_cast<float>(
           extension_number(m.extensions, "KHR_materials_ior", "ior", 1.5, element, 1, kMaxIor));
-      out.surface.roughness = alpha;
+      set_roughness(pbr, pbr_path, alpha, out.surface);
       const double thickness = extension_number(m.extensions, "KHR_materials_volume",
                                                 "thicknessFactor", 0, element, 0, HUGE_VAL);
       if (thickness > 0) {
@@ -352,7 +365,7 @@ class GltfReader {
       out.surface.kind = MaterialKind::kConductor;
       out.surface.conductor_eta = ior.eta;
       out.surface.conductor_k = ior.k;
-      out.surface.roughness = alpha;
+      set_roughness(pbr, pbr_path, alpha, out.surface);
       if (pbr.baseColorTexture.index >= 0) {
         warn(element,
              "the base colour texture of a metal is ignored (snee's conductors have one "
@@ -366,6 +379,9 @@ class GltfReader {
       }
       out.surface.kind = MaterialKind::kDiffuse;
       out.surface.albedo = base_color;
+      if (pbr.metallicRoughnessTexture.index >= 0) {
+        warn(element, "the metallic-roughness texture of a diffuse material is ignored");
+      }
       if (pbr.baseColorTexture.index >= 0) {
         out.surface.albedo_texture =
             texture_image(pbr.baseColorTexture, pbr_path + ".baseColorTexture");
@@ -822,7 +838,7 @@ class GltfReader {
   tinygltf::Model model_;
   GltfAsset asset_;
   // (glTF image index, wrap modes) -> index into asset_.textures
-  std::map<std::tuple<size_t, TextureWrap, TextureWrap>, int> texture_of_image_;
+  std::map<std::tuple<size_t, TextureWrap, TextureWrap, PixelValues>, int> texture_of_image_;
   std::vector<bool> visited_;
   int default_material_ = -1;
 };

@@ -78,7 +78,7 @@ std::vector<float> decode_as_float(OIIO::ImageInput& input, const std::string& p
 }  // namespace
 
 RgbImage decode_rgb_image(const std::string& bytes, const std::string& path, std::string_view what,
-                          const MemoryBudget& budget) {
+                          const MemoryBudget& budget, PixelValues values) {
   // OpenEXR would allocate what an attribute's size claims before reading it.
   check_exr_header(bytes, path);
   OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
@@ -117,7 +117,7 @@ RgbImage decode_rgb_image(const std::string& bytes, const std::string& path, std
   }
   const std::vector<float> data =
       decode_as_float(*input, path, what, budget, decoded_what, decoded_bytes);
-  const bool srgb = is_srgb_encoded(spec);
+  const bool srgb = values == PixelValues::kColour && is_srgb_encoded(spec);
 
   RgbImage image;
   image.width = spec.width;
@@ -138,11 +138,11 @@ RgbImage decode_rgb_image(const std::string& bytes, const std::string& path, std
   return image;
 }
 
-RgbImage read_rgb_image(const std::string& path, std::string_view what,
-                        const MemoryBudget& budget) {
+RgbImage read_rgb_image(const std::string& path, std::string_view what, const MemoryBudget& budget,
+                        PixelValues values) {
   // OpenImageIO reads the bytes from memory, so it sees exactly the file that was checked to
   // be a regular one and never opens a FIFO or a device itself.
-  return decode_rgb_image(read_input_file(path, what, budget), path, what, budget);
+  return decode_rgb_image(read_input_file(path, what, budget), path, what, budget, values);
 }
 
 RgbImage read_env_image(const std::string& path, const MemoryBudget& budget) {

@@ -77,6 +77,14 @@ struct Material {
   // hit's texture coordinates, multiplies `albedo`; -1 for none. Only meshes with texture
   // coordinates may carry such a material (the loader checks).
   int albedo_texture = -1;
+  // Dielectric and conductor: index into Scene::textures whose green channel g (where glTF's
+  // metallic-roughness textures keep roughness; a grey image has it in every channel), looked up
+  // at the hit, scales `roughness`: the GGX alpha there is roughness * g, or roughness * g^2 when
+  // `roughness_texture_squared` (glTF, whose alpha is the square of its perceptual roughness, so
+  // that `roughness` holds roughnessFactor^2). -1 for none.
+  int roughness_texture = -1;
+  bool roughness_texture_squared = false;
+  bool has_texture() const { return albedo_texture >= 0 || roughness_texture >= 0; }
 };
 
 // Homogeneous participating medium; coefficients per scene unit.

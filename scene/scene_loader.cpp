@@ -440,6 +440,7 @@ class SceneReader {
       if (materials[i] < 0) {
         m.surface.name = prefix + m.name;
         if (m.surface.albedo_texture >= 0) m.surface.albedo_texture += first_texture;
+        if (m.surface.roughness_texture >= 0) m.surface.roughness_texture += first_texture;
         out_.scene.materials.push_back(m.surface);
         materials[i] = static_cast<int>(out_.scene.materials.size() - 1);
       }
@@ -571,27 +572,43 @@ class SceneReader {
   void require_texture_coordinates(const Shape& shape, const JsonValue& where,
                                    const std::string& what, const std::string& detail) const {
     const Material& material = out_.scene.materials[static_cast<size_t>(shape.material)];
-    if (material.albedo_texture < 0 || shape.kind == ShapeKind::kSphere ||
-        !shape.mesh.uvs.empty()) {
+    if (!material.has_texture() || shape.kind == ShapeKind::kSphere || !shape.mesh.uvs.empty()) {
       return;
     }
     where.fail("the material '" + material.name + "' has a texture, but the " + what +
                " has no texture coordinates" + detail);
   }
 
-  // The texture read from `file`, read once however many materials use it; `where` is the JSON
-  // value naming it.
-  int add_texture(const JsonValue& where, const std::string& file) {
-    const auto it = texture_files_.find(file);
+  // The texture read from `file`, read once however many materials use it as the same kind of
+  // values; `where` is the JSON value naming it.
+  int add_texture(const JsonValue& where, const std::string& file,
+                  PixelValues values = PixelValues::kColour) {
+    const auto it = texture_files_.find({file, values});
     if (it != texture_files_.end()) return it->second;
     try {
-      out_.scene.textures.push_back({read_rgb_image(file, "texture", budget_)});
+      out_.scene.textures.push_back({read_rgb_image(file, "texture", budget_, values)});
     } catch (const SceneError& e) {
       where.fail(e.what());
     }
     const int index = static_cast<int>(out_.scene.textures.size() - 1);
-    texture_files_[file] = index;
+    texture_files_[{file, values}] = index;
     return index;
+  }
+
+  // A dielectric's or conductor's `roughness` and `roughness_texture`. With a texture,
+  // roughness is a factor on it (as glTF's roughnessFactor is), 1 by default.
+  void add_roughness(const JsonObject& obj, Material& material, json& canonical) {
+    const std::optional<JsonValue> texture = obj.optional("roughness_texture");
+    if (texture) material.roughness = 1.0f;
+    if (auto roughness = obj.optional("roughness")) {
+      material.roughness = roughness->real(kUnitInterval);
+    }
+    canonical["roughness"] = material.roughness;
+    if (texture) {
+      const ResolvedPath file = resolve(texture->string());
+      material.roughness_texture = add_texture(*texture, file.file, PixelValues::kData);
+      canonical["roughness_texture"] = file.canonical;
+    }
   }
 
   int add_material(const JsonValue& value, bool top_level) {
@@ -614,27 +631,23 @@ class SceneReader {
         canonical["albedo_texture"] = file.canonical;
       }
     } else if (type == "dielectric") {
-      const JsonObject obj = value.object({"name", "type", "ior", "roughness"});
+      const JsonObject obj =
+          value.object({"name", "type", "ior", "roughness", "roughness_texture"});
       material.name = unique_name(obj, top_level, material_names_, "material");
       material.kind = MaterialKind::kDielectric;
       if (auto ior = obj.optional("ior")) material.ior = ior->real(kIorRange);
-      if (auto roughness = obj.optional("roughness")) {
-        material.roughness = roughness->real(kUnitInterval);
-      }
-      canonical = {{"ior", material.ior}, {"roughness", material.roughness}};
+      canonical = {{"ior", material.ior}};
+      add_roughness(obj, material, canonical);
     } else if (type == "conductor") {
-      const JsonObject obj = value.object({"name", "type", "metal", "eta", "k", "roughness"});
+      const JsonObject obj =
+          value.object({"name", "type", "metal", "eta", "k", "roughness", "roughness_texture"});
       material.name = unique_name(obj, top_level, material_names_, "material");
       material.kind = MaterialKind::kConductor;
       const ComplexIor ior = conductor_ior(obj);
       material.conductor_eta = ior.eta;
       material.conductor_k = ior.k;
-      if (auto roughness = obj.optional("roughness")) {
-        material.roughness = roughness->real(kUnitInterval);
-      }
-      canonical = {{"eta", to_json(material.conductor_eta)},
-                   {"k", to_json(material.conductor_k)},
-                   {"roughness", material.roughness}};
+      canonical = {{"eta", to_json(material.conductor_eta)}, {"k", to_json(material.conductor_k)}};
+      add_roughness(obj, material, canonical);
     } else if (type == "diffuse_transmission") {
       const JsonObject obj = value.object({"name", "type", "reflectance", "transmittance"});
       material.name = unique_name(obj, top_level, material_names_, "material");
@@ -691,16 +704,44 @@ class SceneReader {
             obj.required("k").rgb(kConductorIndexRange)};
   }
 
+  // A medium's albedo from the image that `where` names: its mean colour, one albedo for the
+  // whole medium (the medium stays homogeneous, as SNEE's samplers require).
+  Rgb mean_albedo(const JsonValue& where) {
+    const ResolvedPath file = resolve(where.string());
+    RgbImage image;
+    try {
+      image = read_rgb_image(file.file, "medium albedo texture", budget_);
+    } catch (const SceneError& e) {
+      where.fail(e.what());
+    }
+    double sum[3] = {0, 0, 0};
+    for (const Rgb& c : image.pixels) {
+      for (int i = 0; i < 3; ++i) sum[i] += c[i];
+    }
+    const double n = static_cast<double>(image.pixels.size());
+    if (!(n > 0)) where.fail(file.file + ": the image has no pixels");
+    const Rgb mean(static_cast<float>(sum[0] / n), static_cast<float>(sum[1] / n),
+                   static_cast<float>(sum[2] / n));
+    if (mean.x > 1 || mean.y > 1 || mean.z > 1) {
+      where.fail(file.file + ": the mean colour " + describe_point(mean) +
+                 " is above 1; an albedo is at most 1 in each channel");
+    }
+    return mean;
+  }
+
   int add_medium(const JsonValue& value, bool top_level) {
-    const JsonObject obj =
-        value.object({"name", "type", "sigma_s", "sigma_a", "albedo", "mean_free_path", "g"});
+    const JsonObject obj = value.object(
+        {"name", "type", "sigma_s", "sigma_a", "albedo", "albedo_texture", "mean_free_path", "g"});
     if (auto type = obj.optional("type")) type->choice({"homogeneous"});
     Medium medium;
     medium.name = unique_name(obj, top_level, medium_names_, "medium");
     const bool by_coefficients = obj.has("sigma_s") || obj.has("sigma_a");
-    const bool by_albedo = obj.has("albedo") || obj.has("mean_free_path");
+    const bool by_albedo =
+        obj.has("albedo") || obj.has("albedo_texture") || obj.has("mean_free_path");
     if (by_coefficients == by_albedo) {
-      value.fail("expected either sigma_s (and optionally sigma_a) or albedo and mean_free_path");
+      value.fail(
+          "expected either sigma_s (and optionally sigma_a) or albedo (or albedo_texture) and "
+          "mean_free_path");
     }
     if (by_coefficients) {
       medium.sigma_s = obj.required("sigma_s").rgb(kNonNegative);
@@ -710,7 +751,12 @@ class SceneReader {
                    " is beyond single-precision range; expected a smaller sum");
       }
     } else {
-      const Rgb albedo = obj.required("albedo").rgb(kUnitInterval);
+      const std::optional<JsonValue> texture = obj.optional("albedo_texture");
+      Rgb albedo = texture ? Rgb(1.0f) : obj.required("albedo").rgb(kUnitInterval);
+      if (texture) {
+        if (auto factor = obj.optional("albedo")) albedo = factor->rgb(kUnitInterval);
+        albedo = albedo * mean_albedo(*texture);
+      }
       const JsonValue mean_free_path = obj.required("mean_free_path");
       const Rgb sigma_t = Rgb(1.0f) / mean_free_path.rgb(kPositive);
       // Below about 3e-39, sigma_t = 1 / mean_free_path overflows and albedo 0 times it is NaN.
@@ -1035,7 +1081,8 @@ class SceneReader {
   std::vector<std::string> shape_places_;              // shape index -> JSON path or glTF element
   std::map<std::string, std::string> material_names_;  // name -> JSON path of its definition
   std::map<std::string, std::string> medium_names_;
-  std::map<std::string, int> texture_files_;  // file -> index into Scene::textures
+  // (file, what its pixels are) -> index into Scene::textures
+  std::map<std::pair<std::string, PixelValues>, int> texture_files_;
   json canonical_ = json::object();
   json canonical_materials_ = json::array();
   json canonical_media_ = json::array();

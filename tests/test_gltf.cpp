@@ -2,6 +2,7 @@
 // with its node transforms, normals, texture coordinates, camera, lights and materials; a snee
 // scene includes it and overrides materials and media by name; bad assets name the file and
 // the element; and a public sample asset from Debian's assimp-testmodels loads.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -452,6 +453,47 @@ TEST_F(GltfTest, MetallicMaterialsAreConductorsOfTheBaseColour) {
   EXPECT_EQ(barely.materials[0].surface.kind, MaterialKind::kDiffuse);
   ASSERT_EQ(barely.warnings.size(), 1u);
   EXPECT_NE(barely.warnings[0].find("is rendered as 0"), std::string::npos) << barely.warnings[0];
+}
+
+// A transmitting or metallic material's metallicRoughnessTexture scales the roughness: its
+// green channel g, read as data (an 8-bit PNG value is v / 255, never sRGB-decoded), gives
+// alpha = (roughnessFactor g)^2 at a hit, so the material keeps roughnessFactor^2 and the
+// texture is marked squared. A diffuse material ignores it with a warning.
+TEST_F(GltfTest, MetallicRoughnessTexturesGiveTheRoughness) {
+  const std::string png = (dir_ / "rough.png").string();
+  {
+    const unsigned char pixels[3] = {0, 128, 255};
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out && out->open(png, OIIO::ImageSpec(1, 1, 3, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
+  }
+  json doc = embedded();
+  doc["images"] = {{{"uri", "rough.png"}}};
+  doc["textures"] = {{{"source", 0}}};
+  doc["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"] = {{"index", 0}};
+  const GltfAsset jade = load_gltf(write_gltf(doc), Transform());
+  const Material& glass = jade.materials[0].surface;
+  EXPECT_EQ(glass.kind, MaterialKind::kDielectric);
+  EXPECT_FLOAT_EQ(glass.roughness, 0.25f);
+  ASSERT_EQ(glass.roughness_texture, 0);
+  EXPECT_TRUE(glass.roughness_texture_squared);
+  ASSERT_EQ(jade.textures.size(), 1u);
+  EXPECT_FLOAT_EQ(jade.textures[0].image.pixels[0].y, 128.0f / 255.0f);
+  EXPECT_TRUE(jade.warnings.empty());
+
+  doc["materials"][0].erase("extensions");
+  doc["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 1;
+  const GltfAsset metal = load_gltf(write_gltf(doc), Transform());
+  EXPECT_EQ(metal.materials[0].surface.kind, MaterialKind::kConductor);
+  EXPECT_EQ(metal.materials[0].surface.roughness_texture, 0);
+  EXPECT_TRUE(metal.materials[0].surface.roughness_texture_squared);
+
+  doc["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0;
+  const GltfAsset diffuse = load_gltf(write_gltf(doc), Transform());
+  EXPECT_EQ(diffuse.materials[0].surface.roughness_texture, -1);
+  ASSERT_EQ(diffuse.warnings.size(), 1u);
+  EXPECT_NE(diffuse.warnings[0].find("metallic-roughness texture"), std::string::npos)
+      << diffuse.warnings[0];
 }
 
 struct BadAsset {

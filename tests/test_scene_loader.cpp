@@ -733,7 +733,7 @@ TEST_F(SceneLoaderTest, BadInputNamesFilePathAndExpectation) {
        "expected a number > 0"},
       {"albedo above one", "/media/1/albedo", 1.5, "media[1].albedo", "a number in [0, 1]"},
       {"both parametrizations", "/media/1/sigma_s", 1, "media[1]",
-       "either sigma_s (and optionally sigma_a) or albedo and mean_free_path"},
+       "either sigma_s (and optionally sigma_a) or albedo (or albedo_texture) and mean_free_path"},
       {"g of one", "/media/0/g", 1, "media[0].g", "a number in (-1, 1)"},
       {"ior zero", "/materials/0/ior", 0, "materials[0].ior",
        "expected a number in [0.001, 1000], got 0"},

@@ -3,10 +3,12 @@
 // bad textures and surfaces without texture coordinates are clear errors naming the JSON path.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+
 #include <string>
 
 #include "scene/scene_loader.h"
@@ -143,6 +145,85 @@ TEST_F(TextureTest, BadTexturesNameTheFileAndTheJsonPath) {
       test::scene_error_of([&] { load_scene_json(bare, "scene.json", dir_.string()); });
   EXPECT_NE(no_uvs.find("shapes[0].material"), std::string::npos) << no_uvs;
   EXPECT_NE(no_uvs.find("bare.obj' has no texture coordinates"), std::string::npos) << no_uvs;
+}
+
+// An 8-bit grey PNG of one value v: as a roughness texture it is data, v / 255, whatever its
+// colour space; as an albedo texture the same file is an sRGB colour, decoded. A roughness
+// texture makes roughness a factor, 1 by default, for dielectrics and conductors alike, and the
+// canonical form keeps it.
+TEST_F(TextureTest, RoughnessTexturesAreDataWithAUnitFactor) {
+  const std::string png = (dir_ / "grey.png").string();
+  {
+    const unsigned char pixels[4] = {128, 128, 128, 128};
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out && out->open(png, OIIO::ImageSpec(2, 2, 1, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
+  }
+  json doc = textured_quad_scene({{"type", "dielectric"}, {"roughness_texture", "grey.png"}});
+  doc["materials"] = {{{"name", "brushed"},
+                       {"type", "conductor"},
+                       {"metal", "gold"},
+                       {"roughness", 0.3},
+                       {"roughness_texture", "grey.png"}},
+                      {{"name", "painted"}, {"type", "diffuse"}, {"albedo_texture", "grey.png"}}};
+  doc["shapes"].push_back({{"type", "quad"}, {"size", 1.0}, {"material", "brushed"}});
+  doc["shapes"].push_back({{"type", "quad"}, {"size", 0.5}, {"material", "painted"}});
+  const LoadedScene loaded = load_scene_json(doc, "textures", dir_.string());
+  const Scene& scene = loaded.scene;
+  ASSERT_EQ(scene.textures.size(), 2u) << "one file, read as data and as a colour";
+  const Material& glass = scene.materials[static_cast<size_t>(scene.shapes[0].material)];
+  const Material& gold = scene.materials[static_cast<size_t>(scene.shapes[1].material)];
+  const Material& paint = scene.materials[static_cast<size_t>(scene.shapes[2].material)];
+  EXPECT_EQ(glass.kind, MaterialKind::kDielectric);
+  EXPECT_EQ(glass.roughness, 1.0f);
+  EXPECT_EQ(gold.roughness, 0.3f);
+  ASSERT_GE(glass.roughness_texture, 0);
+  EXPECT_EQ(glass.roughness_texture, gold.roughness_texture);
+  EXPECT_FALSE(glass.roughness_texture_squared);
+  const Rgb data = scene.textures[static_cast<size_t>(glass.roughness_texture)].image.pixels[0];
+  const Rgb colour = scene.textures[static_cast<size_t>(paint.albedo_texture)].image.pixels[0];
+  expect_rgb(data, Rgb(128.0f / 255.0f), 1e-6f, "data");
+  // sRGB 128/255 is linear 0.2158.
+  expect_rgb(colour, Rgb(0.21586f), 1e-4f, "colour");
+  const json canonical = loaded.canonical;
+  bool kept = false;
+  for (const json& m : canonical["materials"]) {
+    if (m.contains("roughness_texture")) kept = m["roughness_texture"].get<std::string>() == png;
+  }
+  EXPECT_TRUE(kept) << canonical.dump();
+  const LoadedScene again = load_scene_json(canonical, "canonical", dir_.string());
+  EXPECT_EQ(again.canonical, canonical);
+}
+
+// A medium's albedo_texture is one albedo for the whole medium: the image's mean colour, times
+// `albedo` where given.
+TEST_F(TextureTest, MediumAlbedoTextureIsTheMeanOfTheImage) {
+  json doc = textured_quad_scene({{"type", "diffuse"}});
+  doc["media"] = {
+      {{"name", "painted"}, {"albedo_texture", "quadrants.exr"}, {"mean_free_path", 0.5}},
+      {{"name", "dimmed"},
+       {"albedo_texture", "quadrants.exr"},
+       {"albedo", 0.5},
+       {"mean_free_path", 0.5}}};
+  const Scene scene = load_scene_json(doc, "textures", dir_.string()).scene;
+  const Rgb mean =
+      (quadrant_colour(0) + quadrant_colour(1) + quadrant_colour(2) + quadrant_colour(3)) * 0.25f;
+  ASSERT_EQ(scene.media.size(), 2u);
+  expect_rgb(scene.media[0].sigma_s, mean * 2.0f, 1e-6f, "sigma_s");
+  expect_rgb(scene.media[0].sigma_t(), Rgb(2.0f), 1e-6f, "sigma_t");
+  expect_rgb(scene.media[1].sigma_s, mean, 1e-6f, "sigma_s with a factor");
+  EXPECT_TRUE(scene.textures.empty()) << "a medium's texture is not looked up while rendering";
+
+  doc["media"] = {{{"name", "bright"}, {"albedo_texture", "quadrants.exr"}}};
+  const std::string missing =
+      test::scene_error_of([&] { load_scene_json(doc, "scene.json", dir_.string()); });
+  EXPECT_NE(missing.find("media[0]"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("mean_free_path"), std::string::npos) << missing;
+  doc["media"] = {{{"name", "gone"}, {"albedo_texture", "nope.exr"}, {"mean_free_path", 1}}};
+  const std::string absent =
+      test::scene_error_of([&] { load_scene_json(doc, "scene.json", dir_.string()); });
+  EXPECT_NE(absent.find("media[0].albedo_texture"), std::string::npos) << absent;
+  EXPECT_NE(absent.find("nope.exr"), std::string::npos) << absent;
 }
 
 Vec3 on_sphere(const Shape& sphere, float theta, float phi) {
