@@ -19,6 +19,7 @@ void run_sampler(benchmark::State& state, Sampler sampler) {
   const SneeMedium medium{Rgb(1.0f), Rgb(1.2f), 0.0f};
   const ExitPoint exit{Vec3(0.15f, -0.05f, 0.0f),
                        Vec3(0, 0, 1),
+                       Vec3(0, 0, 1),
                        {1.5f, static_cast<float>(state.range(0)) / 100.0f}};
   const SneeOptions options;
   const std::vector<float> u = bench::uniforms(bench::kItems * Dimensions, 1);

@@ -26,7 +26,7 @@ struct Exits {
       const float* q = r.data() + 7 * i;
       origins[i] = {Vec3(0.3f * q[0], 0.3f * q[1], -0.05f - 0.6f * q[2]),
                     sample_uniform_sphere(Vec2{q[3], q[4]})};
-      exits[i] = {Vec3(2 * q[5] - 1, 2 * q[6] - 1, 0.0f), Vec3(0, 0, 1), interface};
+      exits[i] = {Vec3(2 * q[5] - 1, 2 * q[6] - 1, 0.0f), Vec3(0, 0, 1), Vec3(0, 0, 1), interface};
     }
     u = bench::uniforms(bench::kItems * 16, 3);
   }
@@ -69,6 +69,9 @@ Vec3 x_k_of(const Exits& e, size_t i) {
 Vec3 n_k_of(const Exits& e, size_t i) {
   return e.exits[i].n_k;
 }
+Vec3 ns_k_of(const Exits& e, size_t i) {
+  return e.exits[i].ns_k;
+}
 
 float alpha_of(const benchmark::State& state) {
   return static_cast<float>(state.range(0)) / 100.0f;
@@ -110,7 +113,7 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
         const float* u = e.u_of(k + l);
         const LightSample& s = samples[l] =
             e.lights.sample(e.exits[k + l].x_k, u[0], Vec2{u[1], u[2]});
-        lit[l] = lights_exit_point(s, e.exits[k + l].n_k);
+        lit[l] = lights_exit_point(s, e.exits[k + l].n_k, e.exits[k + l].ns_k);
         w[0][l] = s.wi.x;
         w[1][l] = s.wi.y;
         w[2][l] = s.wi.z;
@@ -124,6 +127,7 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
            e.vector(k, omega_in_of),
            e.vector(k, x_k_of),
            e.vector(k, n_k_of),
+           e.vector(k, ns_k_of),
            simd::FloatBatch(e.medium.g),
            broadcast(e.medium.sigma_t),
            dielectric,
@@ -177,7 +181,7 @@ void BM_SneeProposeBottomToTopSimd(benchmark::State& state) {
       for (int n = 0; n < kBottomToTopDimensions; ++n) u[n] = e.numbers(k, 8 + n);
       const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
           {e.vector(k, x_i_of), e.vector(k, omega_in_of), e.vector(k, x_k_of), e.vector(k, n_k_of),
-           simd::FloatBatch(e.medium.g), dielectric},
+           e.vector(k, ns_k_of), simd::FloatBatch(e.medium.g), dielectric},
           e.options, u, simd::kLanes);
       alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], p[simd::kLanes], ok[simd::kLanes];
       simd::store_aligned(b.x_j, x[0], x[1], x[2]);

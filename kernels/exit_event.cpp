@@ -14,9 +14,11 @@ namespace snee {
 
 namespace {
 
+// The suffix of an exit at x_k on surface geom, whose interface there is `interface` (its
+// roughness texture applied) and whose normals are n_k (geometric) and ns_k (shading).
 SneeSuffix exit_suffix(const KernelContext& ctx, Vec3 x_i, Vec3 omega_in, Vec3 x_j, Vec3 x_k,
-                       Vec3 n_k, uint32_t geom, Vec3 omega_o, float light_pdf, bool delta,
-                       bool distant) {
+                       Vec3 n_k, Vec3 ns_k, const DielectricParams& interface, uint32_t geom,
+                       Vec3 omega_o, float light_pdf, bool delta, bool distant) {
   const SurfaceInfo& surface = ctx.surfaces[geom];
   const MediumInfo& m = ctx.media[static_cast<size_t>(surface.interior_medium)];
   SneeSuffix s;
@@ -25,9 +27,10 @@ SneeSuffix exit_suffix(const KernelContext& ctx, Vec3 x_i, Vec3 omega_in, Vec3 x
   s.x_j = x_j;
   s.x_k = x_k;
   s.n_k = n_k;
+  s.ns_k = ns_k;
   s.omega_o = omega_o;
   s.medium = {m.sigma_s, m.sigma_t, m.g};
-  s.interface = surface.dielectric;
+  s.interface = interface;
   s.light_pdf = light_pdf;
   s.light_delta = delta;
   s.light_distant = distant;
@@ -64,9 +67,8 @@ void queue_weighted(const KernelContext& ctx, Strategy st, const SneeSuffix& s, 
 }  // namespace
 
 ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
-                          Vec3 n, uint32_t geom) {
+                          Vec3 n, Vec3 ns, const SurfaceInfo& info, uint32_t geom) {
   ExitEvent e;
-  const SurfaceInfo& info = ctx.surfaces[geom];
   const Vec3 d = state.direction(slot);
   const bool leaving_medium = dot(d, n) > 0 && state.medium[slot] >= 0 &&
                               info.kind == MaterialKind::kDielectric &&
@@ -77,10 +79,8 @@ ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint
     e.light_handled_elsewhere = leaving_medium && after_medium_vertex;
     return e;
   }
-  // SNEE's probe never takes a smooth-shaded or roughness-textured boundary (snee_probe.cpp), so
-  // its exits keep the path tracer's own weights.
   if (ctx.integrator != Integrator::kSnee || !leaving_medium || !after_medium_vertex ||
-      (flags & kPathMediumVertexI) == 0 || !info.uniform_boundary()) {
+      (flags & kPathMediumVertexI) == 0) {
     return e;
   }
   e.snee_possible = true;
@@ -89,6 +89,8 @@ ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint
   e.x_j = state.vertex_j(slot);
   e.x_k = p;
   e.n_k = n;
+  e.ns_k = ns;
+  e.interface = info.dielectric;
   e.geom = geom;
   return e;
 }
@@ -96,8 +98,9 @@ ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint
 void connect_exit_light_sample(const KernelContext& ctx, uint32_t slot, const ExitEvent& exit,
                                Vec3 omega_o, float light_pdf, bool delta, bool distant,
                                Rgb unweighted, uint32_t segment, ShadowQueue& shadow) {
-  const SneeSuffix s = exit_suffix(ctx, exit.x_i, exit.omega_in, exit.x_j, exit.x_k, exit.n_k,
-                                   exit.geom, omega_o, light_pdf, delta, distant);
+  const SneeSuffix s =
+      exit_suffix(ctx, exit.x_i, exit.omega_in, exit.x_j, exit.x_k, exit.n_k, exit.ns_k,
+                  exit.interface, exit.geom, omega_o, light_pdf, delta, distant);
   queue_weighted(ctx, Strategy::kUnidirectionalLight, s, slot, unweighted, segment, 1, shadow);
 }
 
@@ -113,6 +116,10 @@ void remember_exit(PathState& state, uint32_t slot, const ExitEvent& exit) {
   state.exit_nk_x[slot] = exit.n_k.x;
   state.exit_nk_y[slot] = exit.n_k.y;
   state.exit_nk_z[slot] = exit.n_k.z;
+  state.exit_nsk_x[slot] = exit.ns_k.x;
+  state.exit_nsk_y[slot] = exit.ns_k.y;
+  state.exit_nsk_z[slot] = exit.ns_k.z;
+  state.exit_alpha[slot] = exit.interface.alpha;
 }
 
 void connect_exit_emission(const KernelContext& ctx, const PathState& state, uint32_t slot,
@@ -121,12 +128,15 @@ void connect_exit_emission(const KernelContext& ctx, const PathState& state, uin
   if (is_black(le)) return;
   // The exit pushed x_k, so the path's memory now holds x_j (as its x_i) and x_k (as its x_j);
   // null crossings since then push nothing.
+  const uint32_t geom = state.exit_geom[slot];
   const SneeSuffix s =
       exit_suffix(ctx, {state.exit_xi_x[slot], state.exit_xi_y[slot], state.exit_xi_z[slot]},
                   {state.exit_win_x[slot], state.exit_win_y[slot], state.exit_win_z[slot]},
                   state.vertex_i(slot), state.vertex_j(slot),
                   {state.exit_nk_x[slot], state.exit_nk_y[slot], state.exit_nk_z[slot]},
-                  state.exit_geom[slot], omega_o, light_pdf, false, distant);
+                  {state.exit_nsk_x[slot], state.exit_nsk_y[slot], state.exit_nsk_z[slot]},
+                  {ctx.surfaces[geom].dielectric.eta, state.exit_alpha[slot]}, geom, omega_o,
+                  light_pdf, false, distant);
   queue_weighted(ctx, Strategy::kUnidirectionalBsdf, s, slot, state.throughput(slot) * le, 0, 0,
                  shadow);
 }
@@ -253,7 +263,7 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
                            static_cast<float>(scale);
     if (is_black(unweighted) || !is_finite(unweighted)) continue;
     s.x_k = exit.y;
-    s.n_k = exit.n;
+    s.n_k = s.ns_k = exit.n;
     const Vec3 inner = exit.y - ctx.epsilon * exit.n, outer = exit.y + ctx.epsilon * exit.n;
     const uint32_t first = add_visibility_segment(shadow, x_j, inner, 0.0f);
     shadow.add_segment(outer, light.wi, kInfinity, kVisibilityOnly);

@@ -21,13 +21,15 @@ struct ExitEvent {
   // Under the straight-line approximation, medium vertices already collected direct light
   // through the boundary; the exit's own light samples would count it twice.
   bool light_handled_elsewhere = false;
-  Vec3 x_i, omega_in, x_j, x_k, n_k;
-  uint32_t geom = 0;  // exit surface (its interface and interior medium)
+  Vec3 x_i, omega_in, x_j, x_k, n_k, ns_k;  // ns_k: the shading normal at x_k
+  DielectricParams interface;               // at x_k, its roughness texture applied
+  uint32_t geom = 0;                        // exit surface (its interior medium)
 };
 
-// Called at a surface vertex before the path's vertex memory is shifted.
+// Called at a surface vertex before the path's vertex memory is shifted, with the hit's
+// geometric and shading normals n and ns and its surface `info` (textured).
 ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
-                          Vec3 n, uint32_t geom);
+                          Vec3 n, Vec3 ns, const SurfaceInfo& info, uint32_t geom);
 
 // U_L: a light sample at the exit point toward omega_o. light_pdf: solid angle at x_k, light
 // selection included (the selection probability alone for delta lights); distant: the light

@@ -53,10 +53,6 @@ struct SurfaceInfo {
   // each hit (Material::roughness_texture, surface_texture.h); -1 for none.
   int32_t roughness_texture = -1;
   bool roughness_texture_squared = false;
-  // One shading normal and one roughness over the whole surface (flat shading, no roughness
-  // texture), as SNEE's exit strategies take a boundary to have (snee_probe.cpp): a path that
-  // leaves a medium through any other boundary is the path tracer's alone.
-  bool uniform_boundary() const { return !smooth_shading && roughness_texture < 0; }
   // A mirror or a smooth dielectric: no light sampling, no AOV vertex.
   bool delta() const {
     return (kind == MaterialKind::kDielectric && dielectric.delta()) ||

@@ -51,6 +51,8 @@ enum PathFlags : uint32_t {
   X(float, exit_xi_x) X(float, exit_xi_y) X(float, exit_xi_z)     /* x_i of the exit's suffix */ \
   X(float, exit_win_x) X(float, exit_win_y) X(float, exit_win_z)  /* arriving at that x_i */   \
   X(float, exit_nk_x) X(float, exit_nk_y) X(float, exit_nk_z)     /* normal at the exit x_k */ \
+  X(float, exit_nsk_x) X(float, exit_nsk_y) X(float, exit_nsk_z)  /* its shading normal */     \
+  X(float, exit_alpha)                           /* the interface's roughness at x_k */        \
   X(float, aov_albedo_r) X(float, aov_albedo_g) X(float, aov_albedo_b) /* first_hit_aovs.h */  \
   X(float, aov_normal_x) X(float, aov_normal_y) X(float, aov_normal_z)                         \
   X(float, aov_depth)

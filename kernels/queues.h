@@ -51,7 +51,8 @@ class SlotQueue {
 };
 
 // SNEE exit points found by the probe stage, waiting for subdivision: the slot of the medium
-// vertex x_i and the probe's first hit x_k on that medium's dielectric boundary.
+// vertex x_i and the probe's first hit x_k on that medium's dielectric boundary, with its
+// geometric and shading normals and the interface's roughness there.
 class ExitPointQueue {
  public:
   explicit ExitPointQueue(size_t capacity)
@@ -62,11 +63,15 @@ class ExitPointQueue {
         z_(capacity),
         nx_(capacity),
         ny_(capacity),
-        nz_(capacity) {}
+        nz_(capacity),
+        snx_(capacity),
+        sny_(capacity),
+        snz_(capacity),
+        alpha_(capacity) {}
   void clear() { size_ = 0; }
   bool empty() const { return size_ == 0; }
   size_t size() const { return size_; }
-  void push(uint32_t slot, uint32_t geom, Vec3 x_k, Vec3 n_k) {
+  void push(uint32_t slot, uint32_t geom, Vec3 x_k, Vec3 n_k, Vec3 ns_k, float alpha) {
     const size_t i = size_++;
     slot_[i] = slot;
     geom_[i] = geom;
@@ -76,6 +81,10 @@ class ExitPointQueue {
     nx_[i] = n_k.x;
     ny_[i] = n_k.y;
     nz_[i] = n_k.z;
+    snx_[i] = ns_k.x;
+    sny_[i] = ns_k.y;
+    snz_[i] = ns_k.z;
+    alpha_[i] = alpha;
   }
   uint32_t slot(size_t i) const { return slot_[i]; }
   const uint32_t* slots() const { return slot_.data(); }
@@ -86,13 +95,18 @@ class ExitPointQueue {
   const float* n_k_component(int axis) const {
     return (axis == 0 ? nx_ : axis == 1 ? ny_ : nz_).data();
   }
+  const float* ns_k_component(int axis) const {
+    return (axis == 0 ? snx_ : axis == 1 ? sny_ : snz_).data();
+  }
   uint32_t geom(size_t i) const { return geom_[i]; }
   Vec3 x_k(size_t i) const { return {x_[i], y_[i], z_[i]}; }
   Vec3 n_k(size_t i) const { return {nx_[i], ny_[i], nz_[i]}; }
+  Vec3 ns_k(size_t i) const { return {snx_[i], sny_[i], snz_[i]}; }
+  float alpha(size_t i) const { return alpha_[i]; }
 
  private:
   AlignedArray<uint32_t> slot_, geom_;
-  AlignedArray<float> x_, y_, z_, nx_, ny_, nz_;
+  AlignedArray<float> x_, y_, z_, nx_, ny_, nz_, snx_, sny_, snz_, alpha_;
   size_t size_ = 0;
 };
 

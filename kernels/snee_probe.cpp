@@ -3,11 +3,13 @@
 #include "kernels/batched_pass.h"
 #include "kernels/medium_lanes.h"
 #include "kernels/path_ops.h"
+#include "kernels/shading_normal.h"
 #include "kernels/simd/hg_sample_batch.h"
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/sampling_batch.h"
 #include "kernels/snee/probe.h"
 #include "kernels/stages.h"
+#include "kernels/surface_texture.h"
 
 namespace snee {
 
@@ -58,17 +60,18 @@ void snee_probe(const KernelContext& ctx, PathState& state, StageQueues& q,
     }
     // x_k must be on this medium's own dielectric boundary, reached from inside; anything else
     // is a failed probe (pdf 0 for both strategies; the path tracer still covers that
-    // transport). A smooth-shaded boundary, or one with a roughness texture, is left to the path
-    // tracer (docs/method.md 4.9, 4.10).
+    // transport). The exit takes the boundary's shading normal and textured roughness at x_k
+    // (docs/method.md 4.9, 4.10).
     const SurfaceInfo& info = ctx.surfaces[geom];
     const auto [x_k, n_k] = ctx.embree->surface_point(
         geom, rays.prim(i), rays.origin(i) + rays.direction(i) * rays.tfar(i));
     if (info.kind != MaterialKind::kDielectric || info.interior_medium != state.medium[s] ||
-        !info.uniform_boundary() || dot(rays.direction(i), n_k) <= 0) {
+        dot(rays.direction(i), n_k) <= 0) {
       counters.count(SneeCounter::kProbeOtherSurface);
       continue;
     }
-    q.subdivide.push(s, geom, x_k, n_k);
+    q.subdivide.push(s, geom, x_k, n_k, shading_normal(ctx, geom, rays.prim(i), x_k, n_k),
+                     dielectric_at(ctx, info, geom, rays.prim(i), x_k).alpha);
   }
   q.probe.clear();
 }

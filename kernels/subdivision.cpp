@@ -37,7 +37,7 @@ void draw_chunk(const KernelContext& ctx, const PathState& state, const simd::Sl
 
 // What both strategies' batched parts read at the exits of one chunk.
 struct ChunkExits {
-  simd::Vec3Batch x_i, omega_in, x_k, n_k;
+  simd::Vec3Batch x_i, omega_in, x_k, n_k, ns_k;
   MediumLanes medium;
   simd::DielectricLanes interface;
 };
@@ -53,15 +53,16 @@ ChunkExits load_exits(const KernelContext& ctx, const PathState& state, const Ex
   };
   alignas(64) float eta[simd::kLanes], alpha[simd::kLanes];
   for (size_t l = 0; l < simd::kLanes; ++l) {
-    const DielectricParams& p = ctx.surfaces[exits.geom(k + (l < count ? l : 0))].dielectric;
-    eta[l] = p.eta;
-    alpha[l] = p.alpha;
+    const size_t i = k + (l < count ? l : 0);
+    eta[l] = ctx.surfaces[exits.geom(i)].dielectric.eta;
+    alpha[l] = exits.alpha(i);
   }
   // The path's latest vertex (x_j of the path state) is SNEE's x_i, as in the per-exit pass.
   return {{chunk.load(state.xj_x), chunk.load(state.xj_y), chunk.load(state.xj_z)},
           {chunk.load(state.wjn_x), chunk.load(state.wjn_y), chunk.load(state.wjn_z)},
           exit_vector(&ExitPointQueue::x_k_component),
           exit_vector(&ExitPointQueue::n_k_component),
+          exit_vector(&ExitPointQueue::ns_k_component),
           load_media(ctx, state, chunk),
           {FloatBatch::load_aligned(eta), FloatBatch::load_aligned(alpha)}};
 }
@@ -94,6 +95,7 @@ void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
                                    e.omega_in,
                                    e.x_k,
                                    e.n_k,
+                                   e.ns_k,
                                    e.medium.g,
                                    e.medium.sigma_t,
                                    e.interface,
@@ -115,7 +117,7 @@ void sample_bottom_to_top_chunk(const KernelContext& ctx, const ChunkExits& e,
   for (size_t n = 0; n < u.size(); ++n)
     u[n] = simd::FloatBatch::load_aligned(randoms.u[8 + n].data() + k);
   const simd::BottomToTopBatch bt = simd::propose_bottom_to_top(
-      {e.x_i, e.omega_in, e.x_k, e.n_k, e.medium.g, e.interface}, ctx.snee, u, count);
+      {e.x_i, e.omega_in, e.x_k, e.n_k, e.ns_k, e.medium.g, e.interface}, ctx.snee, u, count);
   simd::store_aligned(bt.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   simd::store_aligned(bt.omega_o, out.wx.data() + k, out.wy.data() + k, out.wz.data() + k);
   bt.pdf.store_aligned(out.pdf.data() + k);
@@ -129,7 +131,7 @@ void sample_lights(const KernelContext& ctx, const ExitPointQueue& exits,
   for (size_t i = 0; i < exits.size(); ++i) {
     const LightSample light =
         ctx.lights->sample(exits.x_k(i), randoms.u[0][i], Vec2{randoms.u[1][i], randoms.u[2][i]});
-    const bool lit = lights_exit_point(light, exits.n_k(i));
+    const bool lit = lights_exit_point(light, exits.n_k(i), exits.ns_k(i));
     out.samples[i] = light;
     out.wx[i] = light.wi.x;
     out.wy[i] = light.wi.y;
@@ -263,7 +265,10 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
     const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
     const SneeMedium medium{m.sigma_s, m.sigma_t, m.g};
     const SneeOrigin origin{state.vertex_j(s), state.direction_in_j(s)};
-    const ExitPoint exit{exits.x_k(i), exits.n_k(i), ctx.surfaces[exits.geom(i)].dielectric};
+    const ExitPoint exit{exits.x_k(i),
+                         exits.n_k(i),
+                         exits.ns_k(i),
+                         {ctx.surfaces[exits.geom(i)].dielectric.eta, exits.alpha(i)}};
     if (top_to_bottom) {
       const StrategyResults& tb = scratch.top_to_bottom;
       if (scratch.lights.lit[i] == 0) {

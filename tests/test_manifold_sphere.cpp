@@ -141,7 +141,7 @@ SneeSuffix manifold_suffix(TestRng& rng, bool x_i_medium, bool* ok) {
   *ok = exits.count > 0;
   if (!*ok) return s;
   s.x_k = exits.exit[0].y;
-  s.n_k = exits.exit[0].n;
+  s.n_k = s.ns_k = exits.exit[0].n;
   s.omega_o = light;
   s.medium = {Rgb(2.0f), Rgb(2.02f), 0.3f};
   s.interface = {kEta, 0.0f};

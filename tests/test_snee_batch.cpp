@@ -40,7 +40,9 @@ double rounding_conditioning(const SneeSuffix& s) {
   const double rounding =
       std::sqrt(3.0) * 0x1p-24 * std::max({magnitude(s.x_i), magnitude(s.x_j), magnitude(s.x_k)});
   const double amplification = s.interface.delta() ? 1.0 : 1.0 / s.interface.alpha;
-  const double cos_o = dot(s.n_k, s.omega_o), cos_k_j = dot(s.n_k, normalize(s.x_k - s.x_j));
+  const Vec3 omega_jk = normalize(s.x_k - s.x_j);
+  const double cos_o = dot(s.ns_k, s.omega_o),
+               cos_k_j = std::min(dot(s.n_k, omega_jk), dot(s.ns_k, omega_jk));
   return amplification * (rounding * (1 / length(s.x_j - s.x_i) + 1 / length(s.x_k - s.x_j) +
                                       1 / length(s.x_k - s.x_i)) +
                           0x1p-24 / std::min(cos_o, cos_k_j));
@@ -151,7 +153,9 @@ std::vector<std::pair<SneeOptions, Proposals>> proposal_sets(const test::SneeCas
         options.probe = g == 0 ? ProbeDirections::kUniformSphere : ProbeDirections::kPhaseFunction;
         Proposals proposals;
         for (int k = 0; k < exits; ++k) {
-          const ExitSetup setup = random_setup(rng, c.interface, 0.04f / density, 2.0f / density);
+          // Every other exit on a smooth-shaded boundary (docs/method.md 4.9).
+          const ExitSetup setup = random_setup(rng, c.interface, 0.04f / density, 2.0f / density,
+                                               k % 2 == 0 ? 0.0f : 0.4f);
           const SneeProposal tb =
               propose_top_to_bottom(setup.origin, medium, setup.exit, lights, options, 1e-4f,
                                     uniforms<kTopToBottomDimensions>(rng));
@@ -176,7 +180,7 @@ TEST(SneeWeightsBatch, AgreesWithScalarFinishProposal) {
     for (const auto& [options, proposals] : proposal_sets(c, rng, 10000)) {
       per_case.merge(compare(proposals, options));
     }
-    EXPECT_GT(per_case.weighed, 50000) << c.name;
+    EXPECT_GT(per_case.weighed, 45000) << c.name;  // tilted shading normals reject more
     total.merge(per_case);
   }
   EXPECT_EQ(total.out_of_range, 0);
@@ -251,7 +255,8 @@ struct LaneSample {
 struct SamplerLanes {
   std::array<ExitSetup, simd::kLanes> setups;
   alignas(64) float x_i[3][simd::kLanes], omega_in[3][simd::kLanes], x_k[3][simd::kLanes],
-      n_k[3][simd::kLanes], g[simd::kLanes], eta[simd::kLanes], alpha[simd::kLanes];
+      n_k[3][simd::kLanes], ns_k[3][simd::kLanes], g[simd::kLanes], eta[simd::kLanes],
+      alpha[simd::kLanes];
   simd::Vec3Batch vec(const float (&v)[3][simd::kLanes]) const {
     return {simd::FloatBatch::load_aligned(v[0]), simd::FloatBatch::load_aligned(v[1]),
             simd::FloatBatch::load_aligned(v[2])};
@@ -305,12 +310,15 @@ void compare_sampler(uint64_t seed, bool delta_lights, Batch&& batch, Scalar&& s
           SamplerLanes in;
           std::array<std::array<float, N>, simd::kLanes> us;
           for (size_t l = 0; l < simd::kLanes; ++l) {
-            const ExitSetup e = random_setup(rng, c.interface, 0.04f / density, 2.0f / density);
+            // Every other exit on a smooth-shaded boundary (docs/method.md 4.9).
+            const ExitSetup e = random_setup(rng, c.interface, 0.04f / density, 2.0f / density,
+                                             l % 2 == 0 ? 0.0f : 0.4f);
             in.setups[l] = e;
             us[l] = uniforms<N>(rng);
-            const Vec3 v[4] = {e.origin.x_i, e.origin.omega_in, e.exit.x_k, e.exit.n_k};
-            float(*dst[4])[simd::kLanes] = {in.x_i, in.omega_in, in.x_k, in.n_k};
-            for (int i = 0; i < 4; ++i) {
+            const Vec3 v[5] = {e.origin.x_i, e.origin.omega_in, e.exit.x_k, e.exit.n_k,
+                               e.exit.ns_k};
+            float(*dst[5])[simd::kLanes] = {in.x_i, in.omega_in, in.x_k, in.n_k, in.ns_k};
+            for (int i = 0; i < 5; ++i) {
               dst[i][0][l] = v[i].x;
               dst[i][1][l] = v[i].y;
               dst[i][2][l] = v[i].z;
@@ -329,7 +337,7 @@ void compare_sampler(uint64_t seed, bool delta_lights, Batch&& batch, Scalar&& s
               for (size_t m = 0; m < simd::kLanes; ++m) {
                 alone.setups[m] = in.setups[l];
                 u_alone[m] = us[l];
-                for (auto* v : {&alone.x_i, &alone.omega_in, &alone.x_k, &alone.n_k})
+                for (auto* v : {&alone.x_i, &alone.omega_in, &alone.x_k, &alone.n_k, &alone.ns_k})
                   for (int i = 0; i < 3; ++i) (*v)[i][m] = (*v)[i][l];
                 alone.g[m] = in.g[l];
                 alone.eta[m] = in.eta[l];
@@ -399,7 +407,7 @@ TEST(SneeBottomToTopBatch, AgreesWithScalarSampler) {
           u[n] = simd::FloatBatch::load_aligned(lane);
         }
         const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
-            {in.vec(in.x_i), in.vec(in.omega_in), in.vec(in.x_k), in.vec(in.n_k),
+            {in.vec(in.x_i), in.vec(in.omega_in), in.vec(in.x_k), in.vec(in.n_k), in.vec(in.ns_k),
              simd::FloatBatch::load_aligned(in.g), in.interface()},
             options, u, simd::kLanes);
         return read_lanes(b.x_j, b.omega_o, b.pdf, {b.placed, b.refracted});
@@ -428,7 +436,7 @@ TEST(SneeTopToBottomBatch, AgreesWithScalarSampler) {
         for (size_t l = 0; l < simd::kLanes; ++l) {
           const LightSample light =
               lights.sample(in.setups[l].exit.x_k, us[l][0], Vec2{us[l][1], us[l][2]});
-          lit[l] = lights_exit_point(light, in.setups[l].exit.n_k);
+          lit[l] = lights_exit_point(light, in.setups[l].exit.n_k, in.setups[l].exit.ns_k);
           wi[0][l] = light.wi.x;
           wi[1][l] = light.wi.y;
           wi[2][l] = light.wi.z;
@@ -444,6 +452,7 @@ TEST(SneeTopToBottomBatch, AgreesWithScalarSampler) {
              in.vec(in.omega_in),
              in.vec(in.x_k),
              in.vec(in.n_k),
+             in.vec(in.ns_k),
              simd::FloatBatch::load_aligned(in.g),
              {simd::FloatBatch(medium.sigma_t.x), simd::FloatBatch(medium.sigma_t.y),
               simd::FloatBatch(medium.sigma_t.z)},

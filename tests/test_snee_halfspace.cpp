@@ -113,7 +113,7 @@ class HalfSpace {
     s.omega_in = omega_in_;
     s.x_j = x_j;
     s.x_k = x_k;
-    s.n_k = kUp;
+    s.n_k = s.ns_k = kUp;
     s.omega_o = omega_o;
     s.medium = medium_;
     s.interface = interface_;
@@ -129,7 +129,7 @@ class HalfSpace {
     if (!(w.z > 0)) return;
     Vec3 x_k = x_i_ + (kDepth / w.z) * w;
     x_k.z = 0;
-    const ExitPoint exit{x_k, kUp, interface_};
+    const ExitPoint exit{x_k, kUp, kUp, interface_};
     const SneeOrigin origin{x_i_, omega_in_};
     const SneeCandidate tb =
         sample_top_to_bottom(origin, medium_, exit, lights_, options_, kEpsilon, u_tb);

@@ -57,31 +57,11 @@ void add_panel_emitter(Scene& scene, Rgb emission) {
   scene.lights.push_back(panel);
 }
 
-// The whole image within 4 combined standard errors, and every one of its 4x4 blocks within 5
-// (a Bonferroni-safe bound for 16) where both images have converged there. A block counts as
-// converged when its relative standard error is below 10% in both: dim regions lit only through
-// rare paths (the shadowed side, for an estimator that finds a small light by chance) have
-// heavy-tailed estimates whose sample variance under-reports their error, and a z-test there
-// would measure the sample count, not bias. Returns the number of blocks compared.
+// The whole image and each of its 4x4 blocks (test::expect_same_region).
 int expect_same_image(const Film& a, const Film& b, const std::string& what) {
-  const std::vector<bool> all(a.mean.size(), true);
-  const test::RegionStats ra = test::region_mean(a, all), rb = test::region_mean(b, all);
-  EXPECT_LT(test::z_score(ra.mean, ra.standard_error, rb.mean, rb.standard_error), 4.0)
-      << what << ": " << ra.mean << " +- " << ra.standard_error << " vs " << rb.mean << " +- "
-      << rb.standard_error;
-  int compared = 0;
   const int edge = a.width / 4;
-  for (const auto& block : test::blocks(a, all, edge, edge * edge)) {
-    const test::RegionStats ba = test::region_mean(a, block), bb = test::region_mean(b, block);
-    if (!(ba.standard_error < 0.1 * ba.mean && bb.standard_error < 0.1 * bb.mean)) continue;
-    ++compared;
-    const size_t first =
-        static_cast<size_t>(std::find(block.begin(), block.end(), true) - block.begin());
-    EXPECT_LT(test::z_score(ba.mean, ba.standard_error, bb.mean, bb.standard_error), 5.0)
-        << what << " block at (" << first % a.width << ", " << first / a.width << "): " << ba.mean
-        << " +- " << ba.standard_error << " vs " << bb.mean << " +- " << bb.standard_error;
-  }
-  return compared;
+  return test::expect_same_region(a, b, std::vector<bool>(a.mean.size(), true), edge, edge * edge,
+                                  what);
 }
 
 struct GridCase {

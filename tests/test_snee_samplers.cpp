@@ -252,6 +252,7 @@ SneeSuffix suffix_of(const ExitSetup& setup, const SneeMedium& medium, const Sne
   s.x_j = c.x_j;
   s.x_k = setup.exit.x_k;
   s.n_k = setup.exit.n_k;
+  s.ns_k = setup.exit.ns_k;
   s.omega_o = c.omega_o;
   s.medium = medium;
   s.interface = setup.exit.interface;
@@ -275,53 +276,102 @@ bool well_separated(const ExitSetup& setup, Vec3 x_j) {
   return rounding_negligible(x_j, setup.origin.x_i, setup.exit.x_k, alpha > 0 ? 1 / alpha : 1);
 }
 
+// On flat boundaries and on smooth-shaded ones (tilt: the shading normal leans from the
+// geometric one by up to 0.4 rad, docs/method.md 4.9).
 TEST(SneeStrategies, TopToBottomPdfMatchesPdf) {
   TestRng rng(31);
   const SneeOptions options;
-  for (const test::SneeCase& sc : kStrategyCases) {
-    const Scene scene = light_scene(sc.light);
-    const LightTable lights(scene);
-    int compared = 0;
-    for (int k = 0; k < 100000; ++k) {
-      const ExitSetup setup = random_setup(rng, sc.interface);
-      const SneeCandidate c =
-          sample_top_to_bottom(setup.origin, kMedium, setup.exit, lights, options, 1e-4f,
-                               uniforms<kTopToBottomDimensions>(rng));
-      if (!c.valid || !well_separated(setup, c.x_j)) continue;
-      const SneeSuffix s =
-          suffix_of(setup, kMedium, c, lights, sc.light == LightKind::kDirectional);
-      ASSERT_LT(relative_error(c.pdf, top_to_bottom_pdf(s, options)), kRoundTripTolerance)
-          << sc.name;
-      ++compared;
+  for (const float tilt : {0.0f, 0.4f})
+    for (const test::SneeCase& sc : kStrategyCases) {
+      const Scene scene = light_scene(sc.light);
+      const LightTable lights(scene);
+      int compared = 0;
+      for (int k = 0; k < 100000; ++k) {
+        const ExitSetup setup = random_setup(rng, sc.interface, 0.1f, 0.6f, tilt);
+        const SneeCandidate c =
+            sample_top_to_bottom(setup.origin, kMedium, setup.exit, lights, options, 1e-4f,
+                                 uniforms<kTopToBottomDimensions>(rng));
+        if (!c.valid || !well_separated(setup, c.x_j)) continue;
+        const SneeSuffix s =
+            suffix_of(setup, kMedium, c, lights, sc.light == LightKind::kDirectional);
+        ASSERT_LT(relative_error(c.pdf, top_to_bottom_pdf(s, options)), kRoundTripTolerance)
+            << sc.name << " tilt " << tilt;
+        ++compared;
+      }
+      EXPECT_GT(compared, 10000) << sc.name << " tilt " << tilt;
     }
-    EXPECT_GT(compared, 10000) << sc.name;
-  }
 }
 
 TEST(SneeStrategies, BottomToTopPdfMatchesPdf) {
   TestRng rng(32);
-  for (const float g : {0.0f, 0.7f}) {
-    SneeMedium medium = kMedium;
-    medium.g = g;
-    const SneeOptions options;
-    for (const test::SneeCase& sc : kStrategyCases) {
-      if (sc.light == LightKind::kDirectional) continue;  // BT never reaches a delta light
-      const Scene scene = light_scene(sc.light);
-      const LightTable lights(scene);
-      int compared = 0;
-      for (int k = 0; k < 500000; ++k) {
-        const ExitSetup setup = random_setup(rng, sc.interface);
-        const SneeCandidate c =
-            sample_bottom_to_top(setup.origin, medium, setup.exit, lights, options, 1e-4f,
-                                 uniforms<kBottomToTopDimensions>(rng));
-        if (!c.valid || !well_separated(setup, c.x_j)) continue;
-        const SneeSuffix s = suffix_of(setup, medium, c, lights, false);
-        ASSERT_LT(relative_error(c.pdf, bottom_to_top_pdf(s, options)), kRoundTripTolerance)
-            << sc.name << " g " << g;
-        ++compared;
+  for (const float tilt : {0.0f, 0.4f})
+    for (const float g : {0.0f, 0.7f}) {
+      SneeMedium medium = kMedium;
+      medium.g = g;
+      const SneeOptions options;
+      for (const test::SneeCase& sc : kStrategyCases) {
+        if (sc.light == LightKind::kDirectional) continue;  // BT never reaches a delta light
+        const Scene scene = light_scene(sc.light);
+        const LightTable lights(scene);
+        int compared = 0;
+        for (int k = 0; k < 500000; ++k) {
+          const ExitSetup setup = random_setup(rng, sc.interface, 0.1f, 0.6f, tilt);
+          const SneeCandidate c =
+              sample_bottom_to_top(setup.origin, medium, setup.exit, lights, options, 1e-4f,
+                                   uniforms<kBottomToTopDimensions>(rng));
+          if (!c.valid || !well_separated(setup, c.x_j)) continue;
+          const SneeSuffix s = suffix_of(setup, medium, c, lights, false);
+          ASSERT_LT(relative_error(c.pdf, bottom_to_top_pdf(s, options)), kRoundTripTolerance)
+              << sc.name << " g " << g << " tilt " << tilt;
+          ++compared;
+        }
+        EXPECT_GT(compared, 1000) << sc.name << " g " << g << " tilt " << tilt;
       }
-      EXPECT_GT(compared, 1000) << sc.name << " g " << g;
     }
+}
+
+// Case D on a smooth-shaded boundary (docs/method.md 3.7, 4.9). Top-to-bottom alone under a
+// directional light works in the measure dA(x_k) dt, where its integrand carries
+// cos_k_j / cos_k_j_shading (the volume at x_j by the geometric normal, the refraction about the
+// shading normal); under a cone it works in dV(x_j) dA(x_k) with the refraction Jacobian about
+// the shading normal. From the same x_i and x_k, its mean under a 0.5-degree cone of the same
+// irradiance must be its mean under the directional light (they differ by O(theta^2), 1e-5 here),
+// with the shading normal leaning up to 0.4 rad from the geometric one, and on a flat boundary.
+TEST(SneeStrategies, TopToBottomUnderADirectionalLightIsTheLimitOfSmallCones) {
+  TestRng rng(36);
+  SneeOptions options;
+  options.enabled = StrategySet::only(Strategy::kTopToBottom);
+  const Scene directional_scene = light_scene(LightKind::kDirectional);
+  Scene cone_scene = light_scene(LightKind::kCone);
+  const float theta = 0.5f * kPi / 180.0f;
+  cone_scene.lights[0].half_angle = theta;
+  cone_scene.lights[0].radiance = Rgb(1.0f / (2.0f * kPi * (1.0f - std::cos(theta))));
+  const LightTable directional(directional_scene), cone(cone_scene);
+  for (int k = 0; k < 6; ++k) {
+    const ExitSetup setup = random_setup(rng, {1.5f, 0.0f}, 0.1f, 0.6f, k == 0 ? 0.0f : 0.4f);
+    double sum[2] = {0, 0}, sum2[2] = {0, 0};
+    constexpr int kSamples = 100000;
+    for (int light = 0; light < 2; ++light) {
+      for (int n = 0; n < kSamples; ++n) {
+        const SneeCandidate c =
+            sample_top_to_bottom(setup.origin, kMedium, setup.exit, light == 0 ? directional : cone,
+                                 options, 1e-4f, uniforms<kTopToBottomDimensions>(rng));
+        const double x = c.valid ? c.contribution.y : 0.0;
+        sum[light] += x;
+        sum2[light] += x * x;
+      }
+    }
+    double mean[2], error[2];
+    for (int light = 0; light < 2; ++light) {
+      mean[light] = sum[light] / kSamples;
+      error[light] =
+          std::sqrt(std::max(0.0, sum2[light] / kSamples - mean[light] * mean[light]) / kSamples);
+    }
+    ASSERT_GT(mean[0], 10 * error[0]) << "setup " << k << ": the light must reach x_i";
+    EXPECT_LT(test::z_score(mean[0], error[0], mean[1], error[1]), 4.0)
+        << "setup " << k << " (shading normal " << setup.exit.ns_k.x << ", " << setup.exit.ns_k.y
+        << ", " << setup.exit.ns_k.z << "): directional " << mean[0] << " +- " << error[0]
+        << ", cone " << mean[1] << " +- " << error[1];
   }
 }
 
@@ -363,7 +413,7 @@ SneeSuffix random_suffix(TestRng& rng, DielectricParams interface, bool delta_li
     s.omega_in = random_direction(rng);
     s.x_j = Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, -rng.uniform());
     s.x_k = Vec3(rng.uniform() - 0.5f, rng.uniform() - 0.5f, 0.0f);
-    s.n_k = Vec3(0, 0, 1);
+    s.n_k = s.ns_k = Vec3(0, 0, 1);
     s.medium = {Rgb(0.8f), Rgb(0.5f + 2 * rng.uniform()), rng.uniform() - 0.5f};
     s.interface = interface;
     const Vec3 w_kj = normalize(s.x_j - s.x_k);

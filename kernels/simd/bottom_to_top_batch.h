@@ -11,7 +11,7 @@
 namespace snee::simd {
 
 struct BottomToTopExits {
-  Vec3Batch x_i, omega_in, x_k, n_k;
+  Vec3Batch x_i, omega_in, x_k, n_k, ns_k;  // ns_k: the shading normal (the interface's frame)
   FloatBatch g;
   DielectricLanes interface;
 };
@@ -35,10 +35,12 @@ inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const S
   const Vec3Batch omega_kj = div(negate(to_k), r_jk);
   BottomToTopBatch out;
   out.x_j = placed.x_j;
-  out.placed = placed.valid && r_jk > zero && dot(e.n_k, omega_kj) < zero;
+  out.placed =
+      placed.valid && r_jk > zero && dot(e.n_k, omega_kj) < zero && dot(e.ns_k, omega_kj) < zero;
 
-  // Outward transmission through the macro normal (smooth) or a GGX normal (rough).
-  const FrameBatch frame = FrameBatch::from_normal(e.n_k);
+  // Outward transmission through the macro normal (smooth) or a GGX normal (rough), in the
+  // shading frame.
+  const FrameBatch frame = FrameBatch::from_normal(e.ns_k);
   const Vec3Batch local_kj = frame.to_local(omega_kj);
   const BoolBatch delta = e.interface.delta();
   BoolBatch sampled;
@@ -47,7 +49,7 @@ inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const S
   Vec3Batch omega_o = frame.to_world(local_o);
   omega_o = div(omega_o, xsimd::sqrt(dot(omega_o, omega_o)));
   out.omega_o = omega_o;
-  out.refracted = sampled && dot(e.n_k, omega_o) > zero;
+  out.refracted = sampled && dot(e.ns_k, omega_o) > zero && dot(e.n_k, omega_o) > zero;
 
   const FloatBatch probe = probe_area_pdf(options.probe, e.omega_in, e.g, e.x_i, e.x_k, e.n_k);
   const FloatBatch btdf =

@@ -29,7 +29,7 @@ namespace snee::simd {
 
 // A batch of suffixes x_i -> x_j -> x_k -> light (snee/snee_suffix.h), all producible by SNEE.
 struct SuffixBatch {
-  Vec3Batch x_i, omega_in, x_j, x_k, n_k, omega_o;
+  Vec3Batch x_i, omega_in, x_j, x_k, n_k, ns_k, omega_o;
   Vec3Batch sigma_s, sigma_t;
   FloatBatch g;
   DielectricLanes interface;
@@ -63,12 +63,15 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   const FloatBatch d2 = dot(v_ik, v_ik), r_ij2 = dot(v_ij, v_ij), r_jk2 = dot(v_jk, v_jk);
   const FloatBatch d = xsimd::sqrt(d2), r_ij = xsimd::sqrt(r_ij2), r_jk = xsimd::sqrt(r_jk2);
   const Vec3Batch omega_ik = div(v_ik, d), omega_ij = div(v_ij, r_ij), omega_jk = div(v_jk, r_jk);
-  const FloatBatch cos_k_j = dot(s.n_k, omega_jk), cos_o = dot(s.n_k, s.omega_o);
-  const FrameBatch frame = FrameBatch::from_normal(s.n_k);
+  // Area conversions at x_k by the geometric normal, the interface by the shading normal.
+  const FloatBatch cos_k_j = dot(s.n_k, omega_jk), cos_k_j_shading = dot(s.ns_k, omega_jk);
+  const FloatBatch cos_o = dot(s.ns_k, s.omega_o);
+  const FrameBatch frame = FrameBatch::from_normal(s.ns_k);
   const Vec3Batch local_kj = frame.to_local(negate(omega_jk)), local_o = frame.to_local(s.omega_o);
   // The condition every density and the integrand share: distinct vertices, x_j inside and
-  // omega_o outside of x_k.
-  const BoolBatch exits = d > zero && r_ij > zero && r_jk > zero && cos_o > zero && cos_k_j > zero;
+  // omega_o outside of x_k by both normals.
+  const BoolBatch exits = d > zero && r_ij > zero && r_jk > zero && cos_o > zero &&
+                          cos_k_j > zero && cos_k_j_shading > zero && dot(s.n_k, s.omega_o) > zero;
 
   const FloatBatch probe = probe_area_pdf(options.probe, s.omega_in, s.g, omega_ik, d2, s.n_k);
 
@@ -91,7 +94,7 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   const Lobe rough = rough_transmission(s.interface, local_kj, local_o, btdf.h);
   const BoolBatch rough_ok = rough.ok && btdf.h.z > zero;
   const FloatBatch fresnel_o = fresnel_dielectric(cos_o, eta);
-  const FloatBatch smooth_transmit = one - fresnel_dielectric(cos_k_j, one / eta);
+  const FloatBatch smooth_transmit = one - fresnel_dielectric(cos_k_j_shading, one / eta);
   const FloatBatch exit_bsdf =
       xsimd::select(delta, smooth_transmit, xsimd::select(rough_ok, rough.pdf, zero));
 
@@ -99,7 +102,7 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   const FloatBatch distance = distance_mixture_pdf(
       options.c_exponential, flight_jk, EquiangularBatch(s.x_k, negate(omega_jk), s.x_i), r_jk);
   const FloatBatch refraction = xsimd::select(
-      delta, xsimd::select(s.light_delta, r_jk2, eta * eta * cos_k_j / cos_o), btdf.inward);
+      delta, xsimd::select(s.light_delta, r_jk2, eta * eta * cos_k_j_shading / cos_o), btdf.inward);
   const FloatBatch top_to_bottom = probe * s.light_pdf * refraction * distance / r_jk2;
 
   // Bottom-to-top: probe, joint-importance placement of x_j, outward refraction.
@@ -134,11 +137,11 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   // The integrand (suffix_integrand) per unit of emitted radiance.
   const FloatBatch first_segment = phase_i * phase_j / r_ij2;
   const FloatBatch second_segment = cos_k_j / r_jk2;
-  const FloatBatch exit_factor =
-      xsimd::select(delta,
-                    xsimd::select(s.light_delta, (one - fresnel_o) * cos_o,
-                                  second_segment * eta * eta * (one - fresnel_o)),
-                    second_segment * xsimd::select(rough_ok, rough.f, zero) * cos_o);
+  const FloatBatch exit_factor = xsimd::select(
+      delta,
+      xsimd::select(s.light_delta, (one - fresnel_o) * cos_o * (cos_k_j / cos_k_j_shading),
+                    second_segment * eta * eta * (one - fresnel_o)),
+      second_segment * xsimd::select(rough_ok, rough.f, zero) * cos_o);
   out.attenuation = mul(mul(s.sigma_s, tr_ij), tr_jk);
   out.path = xsimd::select(exits, first_segment * exit_factor, zero);
   return out;
@@ -179,11 +182,11 @@ class MisWeights {
 // lanes repeat lane 0.
 template <class SuffixOf>
 SuffixBatch load_suffixes(SuffixOf&& suffix_of, size_t count) {
-  constexpr int kVectors = 8, kFields = 3 * kVectors + 6;
+  constexpr int kVectors = 9, kFields = 3 * kVectors + 6;
   alignas(64) float f[kFields][kLanes];
   for (size_t l = 0; l < kLanes; ++l) {
     const SneeSuffix& s = suffix_of(l < count ? l : 0);
-    const Vec3 v[kVectors] = {s.x_i,     s.omega_in,       s.x_j,           s.x_k, s.n_k,
+    const Vec3 v[kVectors] = {s.x_i,     s.omega_in,       s.x_j,           s.x_k, s.n_k, s.ns_k,
                               s.omega_o, s.medium.sigma_s, s.medium.sigma_t};
     for (int i = 0; i < kVectors; ++i) {
       f[3 * i][l] = v[i].x;
@@ -203,9 +206,21 @@ SuffixBatch load_suffixes(SuffixOf&& suffix_of, size_t count) {
     return Vec3Batch{batch(3 * i), batch(3 * i + 1), batch(3 * i + 2)};
   };
   const auto flag = [&](int i) { return batch(i) != FloatBatch(0.0f); };
-  return {vec(0),    vec(1),   vec(2),  vec(3),    vec(4),
-          vec(5),    vec(6),   vec(7),  batch(24), {batch(25), batch(26)},
-          batch(27), flag(28), flag(29)};
+  constexpr int kScalars = 3 * kVectors;
+  return {vec(0),
+          vec(1),
+          vec(2),
+          vec(3),
+          vec(4),
+          vec(5),
+          vec(6),
+          vec(7),
+          vec(8),
+          batch(kScalars),
+          {batch(kScalars + 1), batch(kScalars + 2)},
+          batch(kScalars + 3),
+          flag(kScalars + 4),
+          flag(kScalars + 5)};
 }
 
 // What finish_proposal computes, for a batch of proposals: the MIS weight of each lane's own

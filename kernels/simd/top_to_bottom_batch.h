@@ -16,7 +16,7 @@
 namespace snee::simd {
 
 struct TopToBottomExits {
-  Vec3Batch x_i, omega_in, x_k, n_k;
+  Vec3Batch x_i, omega_in, x_k, n_k, ns_k;  // ns_k: the shading normal (the interface's frame)
   FloatBatch g;
   Vec3Batch sigma_t;
   DielectricLanes interface;
@@ -37,16 +37,16 @@ inline TopToBottomBatch propose_top_to_bottom(const TopToBottomExits& e, const S
                                               const std::array<FloatBatch, 5>& u,
                                               size_t active_lanes) {
   const FloatBatch zero(0.0f), one(1.0f);
-  const FrameBatch frame = FrameBatch::from_normal(e.n_k);
+  const FrameBatch frame = FrameBatch::from_normal(e.ns_k);
   const Vec3Batch local_o = frame.to_local(e.light_wi);
   BoolBatch transmitted;
   const Vec3Batch local_kj =
       sample_transmission(e.interface, local_o, u[0], u[1], active_lanes, &transmitted);
   Vec3Batch omega_kj = frame.to_world(local_kj);
   omega_kj = div(omega_kj, xsimd::sqrt(dot(omega_kj, omega_kj)));
-  const FloatBatch cos_kj = neg(dot(e.n_k, omega_kj)), cos_o = dot(e.n_k, e.light_wi);
+  const FloatBatch cos_kj = neg(dot(e.ns_k, omega_kj)), cos_o = dot(e.ns_k, e.light_wi);
   TopToBottomBatch out;
-  out.refracted = transmitted && cos_kj > zero;
+  out.refracted = transmitted && cos_kj > zero && dot(e.n_k, omega_kj) < zero;
 
   const EquiangularBatch equiangular(e.x_k, omega_kj, e.x_i);
   const BoolBatch exponential = u[2] < FloatBatch(options.c_exponential);

@@ -11,7 +11,7 @@ Rgb suffix_integrand(const SneeSuffix& s, Rgb emitted) {
 }
 
 Rgb suffix_integrand(const SneeSuffix& s, const SuffixGeometry& g, Rgb emitted) {
-  if (!g.valid || !(g.cos_o > 0) || !(g.cos_k_j > 0)) return Rgb(0.0f);
+  if (!g.valid || !g.crosses) return Rgb(0.0f);
   const double phases = static_cast<double>(hg_phase(dot(s.omega_in, g.omega_ij), s.medium.g)) *
                         hg_phase(dot(g.omega_ij, g.omega_jk), s.medium.g);
   const Rgb attenuation = s.medium.sigma_s *
@@ -31,7 +31,10 @@ Rgb suffix_integrand(const SneeSuffix& s, const SuffixGeometry& g, Rgb emitted) 
              (1.0 - fresnel_dielectric(static_cast<float>(g.cos_o), s.interface.eta));
       break;
     case SuffixMeasure::kDeltaBoth:
-      exit = (1.0 - fresnel_dielectric(static_cast<float>(g.cos_o), s.interface.eta)) * g.cos_o;
+      // dV(x_j) = cos_k_j dA(x_k) dt by the geometric normal, while the refraction that maps
+      // omega_o to omega_kj turns about the shading normal (docs/method.md 3.7, 4.9).
+      exit = (1.0 - fresnel_dielectric(static_cast<float>(g.cos_o), s.interface.eta)) * g.cos_o *
+             (g.cos_k_j / g.cos_k_j_shading);
       break;
   }
   return attenuation * emitted * static_cast<float>(first_segment * exit);

@@ -17,7 +17,7 @@ namespace {
 // Density of the tracer's BSDF sampler at x_k choosing omega_o given omega_kj, in the measure
 // left after the interface delta (solid angle when rough, a lobe probability when smooth).
 double exit_bsdf_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
-  if (s.light_delta || !(g.cos_o > 0) || !(g.cos_k_j > 0)) return 0.0;
+  if (s.light_delta || !g.crosses) return 0.0;
   if (s.interface.delta()) return smooth_transmission_probability(s);
   return dielectric_pdf(s.interface, g.local_kj, g.local_o);
 }
@@ -25,7 +25,7 @@ double exit_bsdf_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
 // Density of the tracer's light sampler at x_k in the same measure; a smooth interface can never
 // transmit toward a sampled light direction.
 double exit_light_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
-  if (s.interface.delta() || !(g.cos_o > 0) || !(g.cos_k_j > 0)) return 0.0;
+  if (s.interface.delta() || !g.crosses) return 0.0;
   return s.light_pdf;
 }
 
@@ -40,7 +40,7 @@ double first_step_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
 // refraction volume Jacobian (docs/method.md 3.10). Zero wherever it does not run.
 double manifold_exit_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
   if (!s.manifold || !s.x_j_medium || !s.light_delta || !s.light_distant || !s.interface.delta() ||
-      !(g.r_jk > 0) || !(g.cos_o > 0) || !(g.cos_k_j > 0)) {
+      !(g.r_jk > 0) || !g.crosses) {
     return 0.0;
   }
   return s.light_pdf * refraction_volume_jacobian(s.n_k, s.omega_o, s.interface.eta,
@@ -63,7 +63,7 @@ double distance_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOpti
 }
 
 double tb_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& options) {
-  if (!snee_can_produce(s) || !g.valid || !(g.cos_o > 0) || !(g.cos_k_j > 0)) return 0.0;
+  if (!snee_can_produce(s) || !g.valid || !g.crosses) return 0.0;
   const double probe_and_light = probe_pdf(s, options) * s.light_pdf;
   const double t = g.r_jk;
   switch (suffix_measure(s)) {
@@ -75,7 +75,7 @@ double tb_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& o
       // The refracted direction is deterministic; its solid angle relates to omega_o's by the
       // refraction Jacobian eta^2 cos_kj / cos_o (eta_a^2 cos_a dsigma_a = eta_b^2 cos_b dsigma_b).
       const double eta = s.interface.eta;
-      const double jacobian = eta * eta * g.cos_k_j / g.cos_o;
+      const double jacobian = eta * eta * g.cos_k_j_shading / g.cos_o;
       return probe_and_light * jacobian * distance_pdf(s, g, options) / (t * t);
     }
     case SuffixMeasure::kDeltaBoth:
@@ -85,8 +85,7 @@ double tb_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& o
 }
 
 double bt_pdf(const SneeSuffix& s, const SuffixGeometry& g, const SneeOptions& options) {
-  if (!snee_can_produce(s) || !g.valid || s.light_delta || !s.light_distant || !(g.cos_o > 0) ||
-      !(g.cos_k_j > 0)) {
+  if (!snee_can_produce(s) || !g.valid || s.light_delta || !s.light_distant || !g.crosses) {
     return 0.0;
   }
   const JointImportance jis{s.x_i, s.omega_in, s.x_k, s.medium.g, options.c_joint};
@@ -111,7 +110,7 @@ bool is_walk_based(Strategy st) {
 double smooth_transmission_probability(const SneeSuffix& s) {
   // Evaluated from the inside, as the tracer's sampler does (same value up to rounding as from
   // the outside: Fresnel reflectance is symmetric over a refraction pair).
-  const float cos_kj = dot(s.n_k, normalize(s.x_k - s.x_j));
+  const float cos_kj = dot(s.ns_k, normalize(s.x_k - s.x_j));
   if (!(cos_kj > 0)) return 0.0;
   return 1.0 - fresnel_dielectric(cos_kj, 1.0f / s.interface.eta);
 }

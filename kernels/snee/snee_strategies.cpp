@@ -21,6 +21,7 @@ SneeSuffix make_suffix(const SneeOrigin& origin, const SneeMedium& medium, const
   s.x_j = x_j;
   s.x_k = exit.x_k;
   s.n_k = exit.n_k;
+  s.ns_k = exit.ns_k;
   s.omega_o = omega_o;
   s.medium = medium;
   s.interface = exit.interface;
@@ -64,19 +65,24 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kTopToBottomDimensions> u) {
   const LightSample light = lights.sample(exit.x_k, u[0], Vec2{u[1], u[2]});
-  if (!lights_exit_point(light, exit.n_k)) return failed_proposal(SneeFailure::kNoLight);
-  const double cos_o = dot(exit.n_k, light.wi);
+  if (!lights_exit_point(light, exit.n_k, exit.ns_k)) {
+    return failed_proposal(SneeFailure::kNoLight);
+  }
+  const double cos_o = dot(exit.ns_k, light.wi);
 
-  // Inward direction: transmission lobe only, given the light-side direction.
-  const Frame frame = Frame::from_normal(exit.n_k);
+  // Inward direction: transmission lobe only, given the light-side direction, in the shading
+  // frame; it must enter by the geometric normal too.
+  const Frame frame = Frame::from_normal(exit.ns_k);
   const Vec3 local_o = frame.to_local(light.wi);
   Vec3 local_kj;
   if (!dielectric_sample_transmission(exit.interface, local_o, Vec2{u[3], u[4]}, &local_kj)) {
     return failed_proposal(SneeFailure::kRefraction);
   }
   const Vec3 omega_kj = normalize(frame.to_world(local_kj));
-  const double cos_kj = -dot(exit.n_k, omega_kj);
-  if (!(cos_kj > 0)) return failed_proposal(SneeFailure::kRefraction);
+  const double cos_kj = -dot(exit.ns_k, omega_kj);
+  if (!(cos_kj > 0) || !(dot(exit.n_k, omega_kj) < 0)) {
+    return failed_proposal(SneeFailure::kRefraction);
+  }
 
   const DistanceMixture mixture{medium.sigma_t, options.c_exponential, exit.x_k, omega_kj,
                                 origin.x_i};
@@ -127,18 +133,23 @@ SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
   const float r_jk = length(to_k);
   if (!(r_jk > 0)) return failed_proposal(SneeFailure::kPlacement);
   const Vec3 omega_kj = -to_k / r_jk;
-  // x_j must lie on the medium side of x_k.
-  if (!(dot(exit.n_k, omega_kj) < 0)) return failed_proposal(SneeFailure::kPlacement);
+  // x_j must lie on the medium side of x_k, by both normals.
+  if (!(dot(exit.n_k, omega_kj) < 0) || !(dot(exit.ns_k, omega_kj) < 0)) {
+    return failed_proposal(SneeFailure::kPlacement);
+  }
 
-  // Outward direction: transmission lobe only, given the medium-side direction.
-  const Frame frame = Frame::from_normal(exit.n_k);
+  // Outward direction: transmission lobe only, given the medium-side direction, in the shading
+  // frame; it must leave by the geometric normal too.
+  const Frame frame = Frame::from_normal(exit.ns_k);
   const Vec3 local_kj = frame.to_local(omega_kj);
   Vec3 local_o;
   if (!dielectric_sample_transmission(exit.interface, local_kj, Vec2{u[4], u[5]}, &local_o)) {
     return failed_proposal(SneeFailure::kRefraction);
   }
   const Vec3 omega_o = normalize(frame.to_world(local_o));
-  if (!(dot(exit.n_k, omega_o) > 0)) return failed_proposal(SneeFailure::kRefraction);
+  if (!(dot(exit.ns_k, omega_o) > 0) || !(dot(exit.n_k, omega_o) > 0)) {
+    return failed_proposal(SneeFailure::kRefraction);
+  }
   double pdf =
       probe_area_pdf(options.probe, origin.omega_in, medium.g, origin.x_i, exit.x_k, exit.n_k) *
       placed.pdf;

@@ -25,9 +25,10 @@ struct SneeOrigin {
 };
 
 struct ExitPoint {
-  Vec3 x_k;  // first hit of the probe ray from x_i
-  Vec3 n_k;  // outward geometric normal there
-  DielectricParams interface;
+  Vec3 x_k;                    // first hit of the probe ray from x_i
+  Vec3 n_k;                    // outward geometric normal there
+  Vec3 ns_k;                   // outward shading normal there (n_k on flat surfaces)
+  DielectricParams interface;  // at x_k (with its roughness texture applied)
 };
 
 // A segment that must be unoccluded: the ray origin + t direction, 0 < t < t_max.
@@ -80,9 +81,11 @@ struct SneeProposal {
 // distance.
 inline constexpr int kTopToBottomDimensions = 8;
 // Whether top-to-bottom can start from light sample `light` at an exit point with outward
-// normal n_k: a light that gives radiance from above the exit point's horizon.
-inline bool lights_exit_point(const LightSample& light, Vec3 n_k) {
-  return light.valid && light.pdf > 0 && !is_black(light.radiance) && dot(n_k, light.wi) > 0;
+// geometric and shading normals n_k and ns_k: a light that gives radiance from above the exit
+// point's horizon by both (the side rule, docs/method.md 4.9).
+inline bool lights_exit_point(const LightSample& light, Vec3 n_k, Vec3 ns_k) {
+  return light.valid && light.pdf > 0 && !is_black(light.radiance) && dot(n_k, light.wi) > 0 &&
+         dot(ns_k, light.wi) > 0;
 }
 SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& medium,
                                    const ExitPoint& exit, const LightTable& lights,

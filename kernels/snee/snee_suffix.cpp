@@ -26,8 +26,10 @@ SuffixGeometry suffix_geometry(const SneeSuffix& s) {
   g.valid = g.d > 0 && g.r_ij > 0 && g.r_jk > 0;
   g.cos_k_i = dot(s.n_k, g.omega_ik);
   g.cos_k_j = dot(s.n_k, g.omega_jk);
-  g.cos_o = dot(s.n_k, s.omega_o);
-  const Frame frame = Frame::from_normal(s.n_k);
+  g.cos_k_j_shading = dot(s.ns_k, g.omega_jk);
+  g.cos_o = dot(s.ns_k, s.omega_o);
+  g.crosses = g.cos_k_j > 0 && g.cos_k_j_shading > 0 && g.cos_o > 0 && dot(s.n_k, s.omega_o) > 0;
+  const Frame frame = Frame::from_normal(s.ns_k);
   g.local_kj = frame.to_local(-g.omega_jk);
   g.local_o = frame.to_local(s.omega_o);
   return g;

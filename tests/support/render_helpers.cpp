@@ -1,9 +1,12 @@
 #include "tests/support/render_helpers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include <gtest/gtest.h>
+
+#include "tests/support/statistics.h"
 
 namespace snee::test {
 
@@ -101,6 +104,26 @@ std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>&
     }
   }
   return out;
+}
+
+int expect_same_region(const Film& a, const Film& b, const std::vector<bool>& mask, int block,
+                       int min_pixels, const std::string& what) {
+  const RegionStats ra = region_mean(a, mask), rb = region_mean(b, mask);
+  EXPECT_LT(z_score(ra.mean, ra.standard_error, rb.mean, rb.standard_error), 4.0)
+      << what << ": " << ra.mean << " +- " << ra.standard_error << " vs " << rb.mean << " +- "
+      << rb.standard_error;
+  int compared = 0;
+  for (const auto& region : blocks(a, mask, block, min_pixels)) {
+    const RegionStats ba = region_mean(a, region), bb = region_mean(b, region);
+    if (!(ba.standard_error < 0.1 * ba.mean && bb.standard_error < 0.1 * bb.mean)) continue;
+    ++compared;
+    const size_t first =
+        static_cast<size_t>(std::find(region.begin(), region.end(), true) - region.begin());
+    EXPECT_LT(z_score(ba.mean, ba.standard_error, bb.mean, bb.standard_error), 5.0)
+        << what << " block at (" << first % a.width << ", " << first / a.width << "): " << ba.mean
+        << " +- " << ba.standard_error << " vs " << bb.mean << " +- " << bb.standard_error;
+  }
+  return compared;
 }
 
 void expect_renders_to_one(const Film& film) {

@@ -2,6 +2,7 @@
 // image regions using the film's per-pixel variance of the mean.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "scene/film.h"
@@ -32,6 +33,15 @@ std::vector<bool> sphere_mask(const Scene& scene, Vec3 center = {0, 0, 0}, float
 // Expects the whole image and each of its 8x8 blocks to average to 1 within their standard
 // errors (4 and 5 SE), as a white furnace must.
 void expect_renders_to_one(const Film& film);
+// Two renders of one scene agree over `mask`: as a whole within 4 combined standard errors, and
+// in every block (blocks(film, mask, block, min_pixels)) within 5 (a Bonferroni-safe bound for
+// some 16 blocks) where both have converged there. A block counts as converged when its relative
+// standard error is below 10% in both: dim regions lit only through rare paths (the shadowed
+// side, for an estimator that finds a small light by chance) have heavy-tailed estimates whose
+// sample variance under-reports their error, and a z-test there would measure the sample count,
+// not bias. Returns the number of blocks compared.
+int expect_same_region(const Film& a, const Film& b, const std::vector<bool>& mask, int block,
+                       int min_pixels, const std::string& what);
 // Square blocks of `block` pixels intersected with a mask (blocks with fewer than min_pixels
 // masked pixels are dropped).
 std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block,

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 
 #include "kernels/snee/snee_strategies.h"
 #include "scene/scene.h"
@@ -34,12 +35,20 @@ struct ExitSetup {
   ExitPoint exit;
 };
 // x_i at depth z_near + z_range u below the plane, near the origin; x_k on the plane within
-// [-1, 1]^2 with the outward normal +z; a uniformly random incoming direction.
+// [-1, 1]^2 with the outward normal +z; a uniformly random incoming direction. With tilt > 0 the
+// shading normal at x_k leans from +z by a uniform angle up to tilt radians in a uniform azimuth
+// (a smooth-shaded boundary, docs/method.md 4.9); otherwise it is +z.
 inline ExitSetup random_setup(TestRng& rng, DielectricParams interface, float z_near = 0.1f,
-                              float z_range = 0.6f) {
+                              float z_range = 0.6f, float tilt = 0.0f) {
   const Vec3 x_i(0.3f * rng.uniform(), 0.3f * rng.uniform(), -z_near - z_range * rng.uniform());
   const Vec3 x_k(2 * rng.uniform() - 1, 2 * rng.uniform() - 1, 0.0f);
-  return {{x_i, sample_uniform_sphere(rng.uniform2())}, {x_k, Vec3(0, 0, 1), interface}};
+  const Vec3 omega_in = sample_uniform_sphere(rng.uniform2());
+  Vec3 ns(0, 0, 1);
+  if (tilt > 0) {
+    const float a = tilt * rng.uniform(), phi = 6.2831853f * rng.uniform();
+    ns = Vec3(std::sin(a) * std::cos(phi), std::sin(a) * std::sin(phi), std::cos(a));
+  }
+  return {{x_i, omega_in}, {x_k, Vec3(0, 0, 1), ns, interface}};
 }
 
 template <int N>
