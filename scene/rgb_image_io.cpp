@@ -82,7 +82,11 @@ RgbImage decode_rgb_image(const std::string& bytes, const std::string& path, std
   // OpenEXR would allocate what an attribute's size claims before reading it.
   check_exr_header(bytes, path);
   OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-  auto input = OIIO::ImageInput::open(path, nullptr, &memory);
+  // The colour channels as stored: a PNG's alpha would otherwise be multiplied into them (a
+  // texel of alpha 0 reading black), while snee ignores alpha.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto input = OIIO::ImageInput::open(path, &config, &memory);
   if (!input) {
     throw SceneError(path + ": cannot read " + std::string(what) + ": " + OIIO::geterror());
   }

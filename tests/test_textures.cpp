@@ -195,6 +195,33 @@ TEST_F(TextureTest, RoughnessTexturesAreDataWithAUnitFactor) {
   EXPECT_EQ(again.canonical, canonical);
 }
 
+// An alpha channel is ignored: an 8-bit RGBA PNG texel of alpha 0 keeps its colour (OpenImageIO
+// would otherwise multiply alpha into it), as a colour texture and as data.
+TEST_F(TextureTest, AlphaIsIgnored) {
+  const std::string png = (dir_ / "cutout.png").string();
+  {
+    const unsigned char pixels[8] = {128, 64, 255, 0, 128, 64, 255, 255};
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out && out->open(png, OIIO::ImageSpec(2, 1, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
+  }
+  json doc = textured_quad_scene({{"type", "diffuse"}, {"albedo_texture", "cutout.png"}});
+  doc["shapes"].push_back(
+      {{"type", "quad"},
+       {"size", 1.0},
+       {"material",
+        {{"type", "conductor"}, {"metal", "gold"}, {"roughness_texture", "cutout.png"}}}});
+  const Scene scene = load_scene_json(doc, "textures", dir_.string()).scene;
+  ASSERT_EQ(scene.textures.size(), 2u);
+  for (const Texture& t : scene.textures) {
+    expect_rgb(t.image.pixels[0], t.image.pixels[1], 0, t.image.source + " alpha 0 and 1");
+  }
+  const auto& data =
+      scene.materials[static_cast<size_t>(scene.shapes[1].material)].roughness_texture;
+  expect_rgb(scene.textures[static_cast<size_t>(data)].image.pixels[0],
+             Rgb(128.0f / 255, 64.0f / 255, 1.0f), 1e-6f, "data");
+}
+
 // A medium's albedo_texture is one albedo for the whole medium: the image's mean colour, times
 // `albedo` where given.
 TEST_F(TextureTest, MediumAlbedoTextureIsTheMeanOfTheImage) {
