@@ -86,6 +86,10 @@ RgbImage decode_rgb_image(const std::string& bytes, const std::string& path, std
   // texel of alpha 0 reading black), while snee ignores alpha.
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);
+  // With a configuration the readers take the proxy from it, not from open's argument (without
+  // it they would open `path` as a file: an image inside a .glb has no file).
+  OIIO::Filesystem::IOProxy* proxy = &memory;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   auto input = OIIO::ImageInput::open(path, &config, &memory);
   if (!input) {
     throw SceneError(path + ": cannot read " + std::string(what) + ": " + OIIO::geterror());

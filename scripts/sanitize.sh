@@ -7,9 +7,11 @@
 #
 # --ci builds and runs only the tests of the scene, physics and kernels layers
 # (tests/CMakeLists.txt's snee_tests_scene, snee_tests_physics and snee_tests_kernels: every
-# reader of user input, the BSDFs, media, lights, SNEE's math and the batched stage code), the
-# part that fits CI's budget (.ci/README.md); the scheduler and CLI tests need the whole
-# instrumented build, which takes longer than CI has.
+# reader of user input, the BSDFs, media, lights, SNEE's math and the batched stage code) and
+# of the scheduler layer but its two long statistical render tests (snee_tests_scheduler_ci:
+# work units, schedules and threads, budgets, resume, furnaces, textures, smooth shading), the
+# part that fits CI's budget (.ci/README.md); the CLI tests need the whole instrumented build
+# (they spawn the sanitized binaries), which takes longer than CI has.
 #
 # The benchmarks are not built: their smoke runs exercise nothing the tests do not, and their
 # build would add minutes to CI.
@@ -20,7 +22,7 @@ targets=(all)
 ctest_scope=()
 if [[ ${1:-} == --ci ]]; then
   shift
-  targets=(snee_tests_scene snee_tests_physics snee_tests_kernels)
+  targets=(snee_tests_scene snee_tests_physics snee_tests_kernels snee_tests_scheduler_ci)
   # Tests of executables this build skipped are registered as <target>_NOT_BUILT.
   ctest_scope=(-E '_NOT_BUILT$')
 fi

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include <string>
 
+#include "scene/rgb_image_io.h"
 #include "scene/scene_loader.h"
 #include "scene/surface_uv.h"
 #include "scene/texture_set.h"
@@ -220,6 +222,24 @@ TEST_F(TextureTest, AlphaIsIgnored) {
       scene.materials[static_cast<size_t>(scene.shapes[1].material)].roughness_texture;
   expect_rgb(scene.textures[static_cast<size_t>(data)].image.pixels[0],
              Rgb(128.0f / 255, 64.0f / 255, 1.0f), 1e-6f, "data");
+}
+
+// Images inside a .glb have no file: decoding from memory must not fall back to opening the
+// name as a path (it did once the reader got a configuration, making it ignore the proxy).
+TEST_F(TextureTest, ImagesDecodeFromMemoryUnderANameThatIsNoFile) {
+  const std::string png = (dir_ / "cutout.png").string();
+  {
+    const unsigned char pixels[4] = {200, 100, 50, 0};
+    auto out = OIIO::ImageOutput::create(png);
+    ASSERT_TRUE(out && out->open(png, OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::UINT8)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
+  }
+  std::ifstream in(png, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const RgbImage image = decode_rgb_image(bytes, "asset.glb: images[0].png", "texture",
+                                          MemoryBudget{}, PixelValues::kData);
+  ASSERT_EQ(image.pixels.size(), 1u);
+  expect_rgb(image.pixels[0], Rgb(200.0f / 255, 100.0f / 255, 50.0f / 255), 1e-6f, "from memory");
 }
 
 // A medium's albedo_texture is one albedo for the whole medium: the image's mean colour, times
