@@ -235,8 +235,10 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     const Vec3 n{hits.nx[k], hits.ny[k], hits.nz[k]};
     const Vec3 ns{hits.snx[k], hits.sny[k], hits.snz[k]};  // n on flat surfaces
     SurfaceInfo textured;
-    const SurfaceInfo& info = textured_surface(ctx, ctx.surfaces[geom], geom, state.hit_prim[s], p,
-                                               state.hit_t[s], textured);
+    // A dielectric's interface is the one its batched sample took (gather_hits).
+    const SurfaceInfo& info =
+        textured_surface(ctx, ctx.surfaces[geom], geom, state.hit_prim[s], p, state.hit_t[s],
+                         {hits.eta[k], hits.alpha[k]}, textured);
     // A closed boundary reached from the side the ray is not on: the ray grazed it where an
     // entry and an exit lie within float error of each other (at a silhouette edge), and the
     // closest hit found was the exit. Taken as a crossing it would be an exit without an

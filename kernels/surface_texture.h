@@ -41,9 +41,11 @@ inline DielectricParams dielectric_at(const KernelContext& ctx, const SurfaceInf
 
 // `info` with its textured parameters looked up at point p of triangle prim of surface geom,
 // (a triangle of a mesh, or a sphere), reached after `distance` along the ray, in `textured`;
-// `info` itself where it has no texture.
+// `info` itself where it has no texture. A dielectric takes `interface`, what dielectric_at
+// already gave for this hit, so its roughness is not looked up twice.
 inline const SurfaceInfo& textured_surface(const KernelContext& ctx, const SurfaceInfo& info,
                                            uint32_t geom, uint32_t prim, Vec3 p, float distance,
+                                           const DielectricParams& interface,
                                            SurfaceInfo& textured) {
   if (info.albedo_texture < 0 && info.roughness_texture < 0) return info;
   const SurfaceUv at = surface_uv(ctx.scene->shapes[geom], prim, p);
@@ -54,8 +56,9 @@ inline const SurfaceInfo& textured_surface(const KernelContext& ctx, const Surfa
     textured.albedo = info.albedo * colour;
     textured.aov_albedo = textured.albedo;
   }
-  if (info.roughness_texture >= 0) {
-    textured.dielectric.alpha = textured_alpha(ctx, info, at.uv, info.dielectric.alpha);
+  if (info.kind == MaterialKind::kDielectric) {
+    textured.dielectric = interface;
+  } else if (info.roughness_texture >= 0) {
     textured.conductor.alpha = textured_alpha(ctx, info, at.uv, info.conductor.alpha);
   }
   return textured;

@@ -2,7 +2,6 @@
 // with its node transforms, normals, texture coordinates, camera, lights and materials; a snee
 // scene includes it and overrides materials and media by name; bad assets name the file and
 // the element; and a public sample asset from Debian's assimp-testmodels loads.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,6 +19,7 @@
 #include "scene/scene_loader.h"
 #include "tests/support/scene_error_of.h"
 #include "tests/support/test_directory.h"
+#include "tests/support/texture_images.h"
 
 namespace snee {
 namespace {
@@ -461,12 +461,8 @@ TEST_F(GltfTest, MetallicMaterialsAreConductorsOfTheBaseColour) {
 // texture is marked squared. A diffuse material ignores it with a warning.
 TEST_F(GltfTest, MetallicRoughnessTexturesGiveTheRoughness) {
   const std::string png = (dir_ / "rough.png").string();
-  {
-    const unsigned char pixels[3] = {0, 128, 255};
-    auto out = OIIO::ImageOutput::create(png);
-    ASSERT_TRUE(out && out->open(png, OIIO::ImageSpec(1, 1, 3, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
-  }
+  const unsigned char pixels[3] = {0, 128, 255};
+  ASSERT_TRUE(test::write_uint8_image(png, 1, 1, 3, pixels));
   json doc = embedded();
   doc["images"] = {{{"uri", "rough.png"}}};
   doc["textures"] = {{{"source", 0}}};

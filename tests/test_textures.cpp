@@ -3,7 +3,6 @@
 // bad textures and surfaces without texture coordinates are clear errors naming the JSON path.
 #include <gtest/gtest.h>
 
-#include <OpenImageIO/imageio.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -155,12 +154,8 @@ TEST_F(TextureTest, BadTexturesNameTheFileAndTheJsonPath) {
 // canonical form keeps it.
 TEST_F(TextureTest, RoughnessTexturesAreDataWithAUnitFactor) {
   const std::string png = (dir_ / "grey.png").string();
-  {
-    const unsigned char pixels[4] = {128, 128, 128, 128};
-    auto out = OIIO::ImageOutput::create(png);
-    ASSERT_TRUE(out && out->open(png, OIIO::ImageSpec(2, 2, 1, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
-  }
+  const unsigned char pixels[4] = {128, 128, 128, 128};
+  ASSERT_TRUE(test::write_uint8_image(png, 2, 2, 1, pixels));
   json doc = textured_quad_scene({{"type", "dielectric"}, {"roughness_texture", "grey.png"}});
   doc["materials"] = {{{"name", "brushed"},
                        {"type", "conductor"},
@@ -201,12 +196,8 @@ TEST_F(TextureTest, RoughnessTexturesAreDataWithAUnitFactor) {
 // would otherwise multiply alpha into it), as a colour texture and as data.
 TEST_F(TextureTest, AlphaIsIgnored) {
   const std::string png = (dir_ / "cutout.png").string();
-  {
-    const unsigned char pixels[8] = {128, 64, 255, 0, 128, 64, 255, 255};
-    auto out = OIIO::ImageOutput::create(png);
-    ASSERT_TRUE(out && out->open(png, OIIO::ImageSpec(2, 1, 4, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
-  }
+  const unsigned char pixels[8] = {128, 64, 255, 0, 128, 64, 255, 255};
+  ASSERT_TRUE(test::write_uint8_image(png, 2, 1, 4, pixels));
   json doc = textured_quad_scene({{"type", "diffuse"}, {"albedo_texture", "cutout.png"}});
   doc["shapes"].push_back(
       {{"type", "quad"},
@@ -228,12 +219,8 @@ TEST_F(TextureTest, AlphaIsIgnored) {
 // name as a path (it did once the reader got a configuration, making it ignore the proxy).
 TEST_F(TextureTest, ImagesDecodeFromMemoryUnderANameThatIsNoFile) {
   const std::string png = (dir_ / "cutout.png").string();
-  {
-    const unsigned char pixels[4] = {200, 100, 50, 0};
-    auto out = OIIO::ImageOutput::create(png);
-    ASSERT_TRUE(out && out->open(png, OIIO::ImageSpec(1, 1, 4, OIIO::TypeDesc::UINT8)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close());
-  }
+  const unsigned char pixels[4] = {200, 100, 50, 0};
+  ASSERT_TRUE(test::write_uint8_image(png, 1, 1, 4, pixels));
   std::ifstream in(png, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const RgbImage image = decode_rgb_image(bytes, "asset.glb: images[0].png", "texture",

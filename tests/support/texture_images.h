@@ -40,6 +40,17 @@ inline bool write_quadrant_image(const std::string& path) {
   return out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close();
 }
 
+// An 8-bit image of `channels` interleaved values per pixel at `path` (its extension picks the
+// format; a PNG stores the values as given).
+inline bool write_uint8_image(const std::string& path, int width, int height, int channels,
+                              const unsigned char* pixels) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out || !out->open(path, OIIO::ImageSpec(width, height, channels, OIIO::TypeDesc::UINT8))) {
+    return false;
+  }
+  return out->write_image(OIIO::TypeDesc::UINT8, pixels) && out->close();
+}
+
 // A test with a scratch directory of its own that holds the quadrant image as quadrants.exr.
 class QuadrantTextureTest : public ::testing::Test {
  protected:
