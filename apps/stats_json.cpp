@@ -139,12 +139,13 @@ std::string dense_medium_warning(const RenderStats& stats) {
   const std::string name = stats.shortest_free_path_medium.empty()
                                ? "a medium"
                                : "'" + stats.shortest_free_path_medium + "'";
-  char text[400];
+  char text[640];
   std::snprintf(text, sizeof text,
                 "warning: the mean free path of medium %s is only %.3g times the ray clearance "
                 "(float precision at this scene's size): walks near its boundary are distorted "
                 "and it renders too dark (about 2%% at 10 times, 25%% at 1; docs/reliability.md); "
-                "a smaller scene or a longer mean free path avoids it",
+                "a longer mean free path avoids it, as do shapes nearer the origin (the "
+                "clearance grows with the largest coordinate); scaling the whole scene does not",
                 name.c_str(), stats.shortest_free_path_clearances);
   return text;
 }

@@ -91,21 +91,42 @@ class MpiSignals : public ::testing::Test {
  protected:
   void SetUp() override { dir_ = test::fresh_test_directory("mpi"); }
   void TearDown() override { fs::remove_all(dir_); }
+  // Two ranks rendering far more samples than they will get to, writing the image and stats.
+  TwoRanks long_render() const {
+    return TwoRanks(dir_, {"--spp", "1000000", "-o", exr(), "--stats", stats()});
+  }
+  std::string exr() const { return (dir_ / "m.exr").string(); }
+  std::string stats() const { return (dir_ / "m.json").string(); }
+  // What a stopped render leaves: the image so far, and stats that say it is incomplete.
+  void expect_the_image_so_far() const {
+    const Film film = read_exr(exr());
+    EXPECT_LT(film.meta.min_spp, 1000000);
+    EXPECT_EQ(nlohmann::json::parse(read_text_file(stats()))["complete"], false);
+  }
   fs::path dir_;
 };
 
 // SIGTERM to one rank (as a batch system's time limit sends): every rank stops, the image so
 // far is written, and the exit code is 143 rather than 0 for an incomplete image.
 TEST_F(MpiSignals, ASignalToOneRankStopsThemAllWithItsExitCode) {
-  const std::string exr = (dir_ / "m.exr").string();
-  const std::string stats = (dir_ / "m.json").string();
-  TwoRanks two(dir_, {"--spp", "1000000", "-o", exr, "--stats", stats});
+  TwoRanks two = long_render();
   ASSERT_TRUE(two.ready) << two.run.output();
   ASSERT_EQ(kill(two.ranks.back(), SIGTERM), 0);
   EXPECT_EQ(two.run.wait(std::chrono::seconds(120)), 128 + SIGTERM) << two.run.output();
-  const Film film = read_exr(exr);
-  EXPECT_LT(film.meta.min_spp, 1000000);
-  EXPECT_EQ(nlohmann::json::parse(read_text_file(stats))["complete"], false);
+  expect_the_image_so_far();
+}
+
+// Ctrl-C to mpirun itself (the terminal's SIGINT reaching mpirun): Open MPI answers with SIGTERM
+// to every rank, which write the image so far, and reports 1 as the job's exit code whatever the
+// ranks return (docs/reliability.md, "Signals"). The image is kept and the job fails.
+TEST_F(MpiSignals, CtrlCToMpirunWritesTheImageSoFarAndFailsTheJob) {
+  TwoRanks two = long_render();
+  ASSERT_TRUE(two.ready) << two.run.output();
+  ASSERT_EQ(kill(two.run.pid(), SIGINT), 0);
+  const int code = two.run.wait(std::chrono::seconds(120));
+  EXPECT_NE(code, -1) << "mpirun still waits: " << two.run.output();
+  EXPECT_NE(code, 0) << two.run.output();
+  expect_the_image_so_far();
 }
 
 // A rank stopped with SIGSTOP never joins: the other gives up after --join-timeout with a
