@@ -254,6 +254,8 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   LoadedScene loaded = load_scene(scene_, options_.memory_budget);
   for (const std::string& warning : loaded.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  const std::string dense = dense_medium_warning(shortest_free_path(loaded.scene));
+  if (!dense.empty()) std::fprintf(stderr, "%s\n", dense.c_str());
   Scene& scene = loaded.scene;
 
   RenderOptions options = options_;
@@ -404,8 +406,6 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
 
   const std::string nonfinite = nonfinite_warning(result.stats);
   if (!nonfinite.empty()) std::fprintf(stderr, "%s\n", nonfinite.c_str());
-  const std::string dense = dense_medium_warning(result.stats);
-  if (!dense.empty()) std::fprintf(stderr, "%s\n", dense.c_str());
   const std::string engagement = snee_engagement_note(options, result.stats);
   if (!engagement.empty()) std::fprintf(stderr, "%s\n", engagement.c_str());
   write_images(result.film, images);

@@ -85,8 +85,8 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
       {"paths", stats.paths},
       {"nonfinite_samples", stats.nonfinite_samples},
       {"shortest_free_path_clearances",
-       std::isfinite(stats.shortest_free_path_clearances)
-           ? nlohmann::ordered_json(stats.shortest_free_path_clearances)
+       std::isfinite(stats.shortest_free_path.clearances)
+           ? nlohmann::ordered_json(stats.shortest_free_path.clearances)
            : nlohmann::ordered_json(nullptr)},
       {"mrays_per_second", stats.mrays_per_second()},
       {"path_state_bytes_per_slot", stats.path_state_bytes_per_slot},
@@ -134,11 +134,9 @@ std::string nonfinite_warning(const RenderStats& stats) {
   return text;
 }
 
-std::string dense_medium_warning(const RenderStats& stats) {
-  if (!(stats.shortest_free_path_clearances < kFreePathClearancesForAccuracy)) return "";
-  const std::string name = stats.shortest_free_path_medium.empty()
-                               ? "a medium"
-                               : "'" + stats.shortest_free_path_medium + "'";
+std::string dense_medium_warning(const ShortestFreePath& shortest) {
+  if (!(shortest.clearances < kFreePathClearancesForAccuracy)) return "";
+  const std::string name = shortest.medium.empty() ? "a medium" : "'" + shortest.medium + "'";
   char text[640];
   std::snprintf(text, sizeof text,
                 "warning: the mean free path of medium %s is only %.3g times the ray clearance "
@@ -146,7 +144,7 @@ std::string dense_medium_warning(const RenderStats& stats) {
                 "and it renders too dark (about 2%% at 10 times, 25%% at 1; docs/reliability.md); "
                 "a longer mean free path avoids it, as do shapes nearer the origin (the "
                 "clearance grows with the largest coordinate); scaling the whole scene does not",
-                name.c_str(), stats.shortest_free_path_clearances);
+                name.c_str(), shortest.clearances);
   return text;
 }
 

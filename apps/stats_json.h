@@ -31,8 +31,8 @@ nlohmann::ordered_json snee_options_json(const SneeOptions& snee);
 // "" when every sample was finite.
 std::string nonfinite_warning(const RenderStats& stats);
 // The warning for a medium whose mean free path is too short for float precision at the scene's
-// size (RenderStats::shortest_free_path_clearances), or "".
-std::string dense_medium_warning(const RenderStats& stats);
+// size (shortest_free_path, scheduler/render.h), or "". Given before rendering.
+std::string dense_medium_warning(const ShortestFreePath& shortest);
 
 // `snee` renders as `pt` when every light looks larger than --snee-light-limit: the note it
 // prints then ("note: snee ran as pt: ..."), or "" when SNEE ran or another integrator did.

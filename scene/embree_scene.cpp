@@ -37,8 +37,6 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
   // eta^2), and a ray from inside left it without a crossing (FurnaceCrossing.*).
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
 
-  bounds_min_ = Vec3(kInfinity);
-  bounds_max_ = Vec3(-kInfinity);
   face_planes_.resize(scene.shapes.size());
   for (size_t s = 0; s < scene.shapes.size(); ++s) {
     const Shape& shape = scene.shapes[s];
@@ -52,8 +50,6 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
       v[1] = shape.center.y;
       v[2] = shape.center.z;
       v[3] = shape.radius;
-      bounds_min_ = vmin(bounds_min_, shape.center - Vec3(shape.radius));
-      bounds_max_ = vmax(bounds_max_, shape.center + Vec3(shape.radius));
     } else {
       const TriangleMesh& mesh = shape.mesh;
       geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -64,8 +60,6 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
         v[3 * i + 0] = mesh.positions[i].x;
         v[3 * i + 1] = mesh.positions[i].y;
         v[3 * i + 2] = mesh.positions[i].z;
-        bounds_min_ = vmin(bounds_min_, mesh.positions[i]);
-        bounds_max_ = vmax(bounds_max_, mesh.positions[i]);
       }
       auto* idx = static_cast<uint32_t*>(
           rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
@@ -100,11 +94,7 @@ EmbreeScene::EmbreeScene(const Scene& scene) : description_(&scene) {
     throw std::runtime_error("Embree could not build the scene (error code " +
                              std::to_string(int(error)) + ")");
   }
-  if (scene.shapes.empty()) bounds_min_ = bounds_max_ = Vec3(0.0f);
-  const float extent =
-      max_component(vmax(vmax(bounds_max_, -bounds_min_), bounds_max_ - bounds_min_));
-  epsilon_ = kClearanceUlps * std::numeric_limits<float>::epsilon() *
-             std::max(extent, std::numeric_limits<float>::min());
+  epsilon_ = ray_clearance(scene);
 }
 
 EmbreeScene::~EmbreeScene() {

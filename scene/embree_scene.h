@@ -10,13 +10,11 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene/shape_bounds.h"
 
 namespace snee {
 
 inline constexpr uint32_t kInvalidId = RTC_INVALID_GEOMETRY_ID;
-// Ray-origin clearance in units of float epsilon times the scene's extent (EmbreeScene::
-// ray_epsilon).
-inline constexpr float kClearanceUlps = 4.0f;
 
 // Non-owning views of SoA ray arrays (each of length >= n, 16-byte aligned).
 struct RayArrays {
@@ -72,12 +70,10 @@ class EmbreeScene {
   SurfacePoint surface_point(uint32_t geom, uint32_t prim, Vec3 approx) const;
   // Clearance that ray origins keep from a surface: a bound on the floating-point error of a
   // surface point from surface_point and of Embree's own sign of the distance to the surface
-  // (kClearanceUlps ulps of the scene's extent; measured in docs/performance.md). A ray that
-  // starts this far from a surface on one side never finds that surface behind it, nor misses
-  // it ahead.
+  // (ray_clearance in scene/shape_bounds.h: kClearanceUlps ulps of the scene's extent; measured in
+  // docs/performance.md). A ray that starts this far from a surface on one side never finds that
+  // surface behind it, nor misses it ahead.
   float ray_epsilon() const { return epsilon_; }
-  Vec3 bounds_min() const { return bounds_min_; }
-  Vec3 bounds_max() const { return bounds_max_; }
 
  private:
   friend EmbreeThroughput measure_embree_throughput(const Scene&, const EmbreeScene&, size_t, int);
@@ -94,7 +90,6 @@ class EmbreeScene {
   std::vector<std::vector<FacePlane>> face_planes_;  // per mesh shape
   float epsilon_ = 1e-4f;
   bool has_spheres_ = false;
-  Vec3 bounds_min_, bounds_max_;
 };
 
 }  // namespace snee

@@ -139,6 +139,17 @@ void add_workspace_stats(const UnitWorkspace& ws, KernelCounters& counters, Rend
 
 }  // namespace
 
+ShortestFreePath shortest_free_path(const Scene& scene) {
+  ShortestFreePath shortest;
+  const float clearance = ray_clearance(scene);
+  for (const Medium& m : scene.media) {
+    const double densest = std::max({m.sigma_t().x, m.sigma_t().y, m.sigma_t().z});
+    const double clearances = 1.0 / (densest * clearance);
+    if (densest > 0 && clearances < shortest.clearances) shortest = {clearances, m.name};
+  }
+  return shortest;
+}
+
 RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks,
                     const FilmState* resume) {
   validate(scene, options, hooks, resume);
@@ -267,14 +278,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   stats.snee_engaged = snee_engaged;
   stats.snee_strategies = snee_options.enabled;
   stats.smallest_light_degrees = smallest_light;
-  for (const Medium& m : scene.media) {
-    const double densest = std::max({m.sigma_t().x, m.sigma_t().y, m.sigma_t().z});
-    const double clearances = 1.0 / (densest * embree.ray_epsilon());
-    if (densest > 0 && clearances < stats.shortest_free_path_clearances) {
-      stats.shortest_free_path_clearances = clearances;
-      stats.shortest_free_path_medium = m.name;
-    }
-  }
+  stats.shortest_free_path = shortest_free_path(scene);
   stats.simd_lanes = counters.lanes;
   stats.simd_width = simd::kLanes;
   film.meta.render_seconds = stats.seconds;

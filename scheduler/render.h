@@ -131,6 +131,15 @@ struct ProcessShare {
 // and more agree with a thin medium within the noise (docs/reliability.md).
 inline constexpr double kFreePathClearancesForAccuracy = 100.0;
 
+// The shortest mean free path of a scene's media (1 / the largest sigma_t of any channel), in
+// ray clearances (ray_clearance, scene/shape_bounds.h), and the medium's name; infinite
+// without media. Known before rendering, so a front end can warn before a long render.
+struct ShortestFreePath {
+  double clearances = std::numeric_limits<double>::infinity();
+  std::string medium;
+};
+ShortestFreePath shortest_free_path(const Scene& scene);
+
 struct RenderStats {
   double seconds = 0;
   std::array<uint64_t, kRayKinds> rays{};           // by RayKind
@@ -141,12 +150,10 @@ struct RenderStats {
   double queue_occupancy = 0;       // mean over loop turns of the fraction of slots holding a path
   uint64_t paths = 0;
   uint64_t nonfinite_samples = 0;  // dropped (counted, never averaged in)
-  // The shortest mean free path of the scene's media (1 / the largest sigma_t), in ray-origin
-  // clearances (EmbreeScene::ray_epsilon, float precision at the scene's size), and its medium:
-  // below kFreePathClearancesForAccuracy, walks near a boundary are distorted by the clearance
-  // and a dense object renders too dark (docs/reliability.md, "Numbers"). Infinite without media.
-  double shortest_free_path_clearances = std::numeric_limits<double>::infinity();
-  std::string shortest_free_path_medium;
+  // shortest_free_path of the scene: below kFreePathClearancesForAccuracy, walks near a
+  // boundary are distorted by the clearance and a dense object renders too dark
+  // (docs/reliability.md, "Numbers").
+  ShortestFreePath shortest_free_path;
   SneeCounters snee{};
   // Integrator "snee": whether SNEE ran, i.e. some light looked no larger than
   // SneeOptions::light_limit_degrees (the smallest light's half-angle); otherwise the render

@@ -18,8 +18,9 @@
 namespace snee {
 
 // Index of pixel (x, y) in a row-major image `width` pixels wide, formed in 64 bits: y * width
-// overflows int from 2^31 pixels on (a 46341^2 image). Scenes are at most 65536 pixels per edge,
-// so a film index, at most 2^32 - 1, still fits the 32 bits path state keeps per pixel.
+// overflows int from 2^31 pixels on (a 46341^2 image). Scenes are at most kMaxImageEdge (32768)
+// pixels per edge (scene/scene.h), so a film index, below 2^30, fits the 32 bits path state
+// keeps per pixel.
 inline uint64_t row_major_index(int x, int y, int width) {
   return static_cast<uint64_t>(y) * static_cast<uint64_t>(width) + static_cast<uint64_t>(x);
 }

@@ -480,8 +480,8 @@ TEST_F(CliTest, NonFiniteSamplesAreReported) {
 }
 
 // A medium whose mean free path is within 100 ray clearances of this scene's float precision
-// renders too dark near its boundary (docs/reliability.md): the render says so on stderr and
-// in --stats, naming the medium; a medium 1000 times thinner is not warned about.
+// renders too dark near its boundary (docs/reliability.md): the render says so on stderr, before
+// rendering, and in --stats, naming the medium; a medium 1000 times thinner is not warned about.
 TEST_F(CliTest, AMeanFreePathNearTheRayClearanceIsWarnedAbout) {
   const auto scene = [](const char* sigma_s) {
     return std::string(R"({
@@ -503,6 +503,13 @@ TEST_F(CliTest, AMeanFreePathNearTheRayClearanceIsWarnedAbout) {
       nlohmann::json::parse(read_file(path("d.json")))["shortest_free_path_clearances"];
   EXPECT_GT(clearances, 0.5);
   EXPECT_LT(clearances, 2.0);  // 1e-6 against 4 float epsilons of a scene of extent 2
+  // Given before rendering: a render refused before its first sample still warns.
+  const Outcome refused =
+      snee("render dense.json --spp 1 --resolution 4000x4000 --max-memory 40M --quiet -o r.exr");
+  EXPECT_NE(refused.exit_code, 0) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "memory budget")) << refused.output;
+  EXPECT_TRUE(contains(refused.output, "warning: the mean free path of medium 'chalk' is only"))
+      << refused.output;
 
   write_file(path("thin.json"), scene("1e3"));
   const Outcome thin =
