@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "apps/interrupt_request.h"
 #include "apps/output_files.h"
 #include "apps/stats_json.h"
 #include "scene/film.h"
@@ -374,6 +375,34 @@ TEST(OutputFiles, AFailedWriteLeavesNoPartialFile) {
                               throw std::runtime_error("disk full");
                             }),
                std::runtime_error);
+  EXPECT_EQ(read_file(file), "old");
+  EXPECT_TRUE(only_final_files(dir));
+  fs::remove_all(dir);
+}
+
+// Ctrl-C twice: the first asks the render to stop and write what it has; a second one while that
+// image is being written ends the process at once, and the partial file goes with it. The old
+// image stays as it was.
+TEST(OutputFiles, ASecondSignalDuringAWriteRemovesThePartialFile) {
+  const fs::path dir = test::fresh_test_directory("signal");
+  const fs::path file = dir / "a.exr";
+  write_file(file, "old");
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const InterruptRequest interrupt;
+    std::raise(SIGINT);  // the first: a request, the process goes on
+    if (!interrupt.requested()) ::_exit(3);
+    replace_file(file, [](const std::string& partial) {
+      write_file(partial, "half");
+      std::raise(SIGINT);  // the second, in the middle of the write
+    });
+    ::_exit(4);  // not reached: the second signal ends the process
+  }
+  ASSERT_GT(child, 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
+  EXPECT_EQ(WTERMSIG(status), SIGINT);
   EXPECT_EQ(read_file(file), "old");
   EXPECT_TRUE(only_final_files(dir));
   fs::remove_all(dir);
