@@ -22,6 +22,7 @@
 #include "apps/stats_json.h"
 #include "scene/aov_selection.h"
 #include "scene/scene_loader.h"
+#include "scene/shape_bounds.h"
 
 namespace snee {
 namespace {
@@ -254,7 +255,8 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   LoadedScene loaded = load_scene(scene_, options_.memory_budget);
   for (const std::string& warning : loaded.warnings)
     std::fprintf(stderr, "warning: %s\n", warning.c_str());
-  const std::string dense = dense_medium_warning(shortest_free_path(loaded.scene));
+  const std::string dense =
+      dense_medium_warning(shortest_free_path(loaded.scene, ray_clearance(loaded.scene)));
   if (!dense.empty()) std::fprintf(stderr, "%s\n", dense.c_str());
   Scene& scene = loaded.scene;
 

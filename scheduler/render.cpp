@@ -139,9 +139,8 @@ void add_workspace_stats(const UnitWorkspace& ws, KernelCounters& counters, Rend
 
 }  // namespace
 
-ShortestFreePath shortest_free_path(const Scene& scene) {
+ShortestFreePath shortest_free_path(const Scene& scene, float clearance) {
   ShortestFreePath shortest;
-  const float clearance = ray_clearance(scene);
   for (const Medium& m : scene.media) {
     const double densest = std::max({m.sigma_t().x, m.sigma_t().y, m.sigma_t().z});
     const double clearances = 1.0 / (densest * clearance);
@@ -278,7 +277,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   stats.snee_engaged = snee_engaged;
   stats.snee_strategies = snee_options.enabled;
   stats.smallest_light_degrees = smallest_light;
-  stats.shortest_free_path = shortest_free_path(scene);
+  stats.shortest_free_path = shortest_free_path(scene, embree.ray_epsilon());
   stats.simd_lanes = counters.lanes;
   stats.simd_width = simd::kLanes;
   film.meta.render_seconds = stats.seconds;

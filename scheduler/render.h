@@ -132,13 +132,14 @@ struct ProcessShare {
 inline constexpr double kFreePathClearancesForAccuracy = 100.0;
 
 // The shortest mean free path of a scene's media (1 / the largest sigma_t of any channel), in
-// ray clearances (ray_clearance, scene/shape_bounds.h), and the medium's name; infinite
-// without media. Known before rendering, so a front end can warn before a long render.
+// units of the scene's ray clearance (ray_clearance, scene/shape_bounds.h; render() passes the
+// one its EmbreeScene already has), and the medium's name; infinite without media. Known before
+// rendering, so a front end can warn before a long render.
 struct ShortestFreePath {
   double clearances = std::numeric_limits<double>::infinity();
   std::string medium;
 };
-ShortestFreePath shortest_free_path(const Scene& scene);
+ShortestFreePath shortest_free_path(const Scene& scene, float clearance);
 
 struct RenderStats {
   double seconds = 0;
