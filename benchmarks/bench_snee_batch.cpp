@@ -135,7 +135,7 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
             simd::FloatBatch::load_aligned(w[2])},
            simd::FloatBatch::load_aligned(pdf),
            simd::FloatBatch::load_aligned(delta) != simd::FloatBatch(0.0f)},
-          e.options, u, simd::kLanes);
+          e.options, u);
       alignas(64) float x[3][simd::kLanes], p[simd::kLanes], ok[simd::kLanes];
       simd::store_aligned(b.x_j, x[0], x[1], x[2]);
       b.pdf.store_aligned(p);
@@ -182,7 +182,7 @@ void BM_SneeProposeBottomToTopSimd(benchmark::State& state) {
       const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
           {e.vector(k, x_i_of), e.vector(k, omega_in_of), e.vector(k, x_k_of), e.vector(k, n_k_of),
            e.vector(k, ns_k_of), simd::FloatBatch(e.medium.g), dielectric},
-          e.options, u, simd::kLanes);
+          e.options, u);
       alignas(64) float x[3][simd::kLanes], w[3][simd::kLanes], p[simd::kLanes], ok[simd::kLanes];
       simd::store_aligned(b.x_j, x[0], x[1], x[2]);
       simd::store_aligned(b.omega_o, w[0], w[1], w[2]);

@@ -90,8 +90,8 @@ void sample_chunk(const KernelContext& ctx, const PathState& state, const simd::
         .u[0]
         .store_aligned(out.u_roulette.data() + k);
   }
-  const simd::BsdfSampleBatch bs = simd::dielectric_sample({at(out.eta), at(out.alpha)}, wo, r.u[0],
-                                                           r.u[1], r.u[2], chunk.count());
+  const simd::BsdfSampleBatch bs = simd::dielectric_sample(
+      simd::DielectricLanes{at(out.eta), at(out.alpha)}, wo, r.u[0], r.u[1], r.u[2]);
   const simd::Vec3Batch wi = frame.to_world(bs.wi);
   wi.x.store_aligned(out.wx.data() + k);
   wi.y.store_aligned(out.wy.data() + k);

@@ -102,7 +102,7 @@ void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
                                    {at(lights.wx), at(lights.wy), at(lights.wz)},
                                    at(lights.pdf),
                                    at(lights.delta) != FloatBatch(0.0f)},
-                                  ctx.snee, u, count);
+                                  ctx.snee, u);
   simd::store_aligned(tb.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   tb.pdf.store_aligned(out.pdf.data() + k);
   store_status(tb.refracted, tb.distanced, kSneeNotRefracted, kSneeNoDistance,
@@ -111,13 +111,12 @@ void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
 
 // Bottom-to-top up to the light lookup, for the exits at queue positions [k, k + count).
 void sample_bottom_to_top_chunk(const KernelContext& ctx, const ChunkExits& e,
-                                const SubdivisionRandoms& randoms, StrategyResults& out,
-                                size_t count, size_t k) {
+                                const SubdivisionRandoms& randoms, StrategyResults& out, size_t k) {
   std::array<simd::FloatBatch, kBottomToTopDimensions> u;
   for (size_t n = 0; n < u.size(); ++n)
     u[n] = simd::FloatBatch::load_aligned(randoms.u[8 + n].data() + k);
   const simd::BottomToTopBatch bt = simd::propose_bottom_to_top(
-      {e.x_i, e.omega_in, e.x_k, e.n_k, e.ns_k, e.medium.g, e.interface}, ctx.snee, u, count);
+      {e.x_i, e.omega_in, e.x_k, e.n_k, e.ns_k, e.medium.g, e.interface}, ctx.snee, u);
   simd::store_aligned(bt.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   simd::store_aligned(bt.omega_o, out.wx.data() + k, out.wy.data() + k, out.wz.data() + k);
   bt.pdf.store_aligned(out.pdf.data() + k);
@@ -241,8 +240,7 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
                                                 chunk.count(), k);
                    }
                    if (bottom_to_top) {
-                     sample_bottom_to_top_chunk(ctx, e, scratch.randoms, scratch.bottom_to_top,
-                                                chunk.count(), k);
+                     sample_bottom_to_top_chunk(ctx, e, scratch.randoms, scratch.bottom_to_top, k);
                    }
                  });
 

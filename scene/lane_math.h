@@ -45,6 +45,19 @@ inline float log1p(float x) {
   return std::log1p(x);
 }
 
+// Selection between masks (bool, or a batch of booleans, which xsimd's select does not take).
+template <class M>
+M select_mask(M m, M a, M b) {
+  return (m && a) || (!m && b);
+}
+// Whether every or any lane of a mask is set; a float lane has one.
+inline bool all(bool m) {
+  return m;
+}
+inline bool any(bool m) {
+  return m;
+}
+
 // std::clamp's exact semantics (a NaN passes through), which min/max instructions do not keep.
 template <class F>
 F clamp(F v, F lo, F hi) {
@@ -64,6 +77,7 @@ struct ops<float> {
   static float copysign(float magnitude, float sign) { return std::copysign(magnitude, sign); }
   // libm's sine and cosine, as the scalar functions always called them.
   static std::pair<float, float> sincos(float x) { return {std::sin(x), std::cos(x)}; }
+  static std::pair<float, float> libm_sincos(float x) { return sincos(x); }
 };
 
 template <class F>
@@ -83,6 +97,16 @@ template <Lane F>
 std::pair<F, F> sincos(F x) {
   return ops<F>::sincos(x);
 }
+// {sin x, cos x} from libm on every lane: slower than sincos on a batch, but bit for bit what
+// the scalar code gets, where a kernel's images must not move when it is batched.
+template <Lane F>
+std::pair<F, F> libm_sincos(F x) {
+  return ops<F>::libm_sincos(x);
+}
+
+// The result of comparing two F: bool for float, a batch of booleans for a batch.
+template <class F>
+using MaskOf = decltype(std::declval<F>() < std::declval<F>());
 
 // The 3-vector whose components are F (scene/math.h: Vec3 for float; kernels/simd: Vec3Batch).
 template <class F>

@@ -46,6 +46,11 @@ template <>
 struct lane::vec3_of<float> {
   using type = Vec3;
 };
+namespace lane {
+inline Vec3 select(bool m, Vec3 a, Vec3 b) {
+  return m ? a : b;
+}
+}  // namespace lane
 
 constexpr Vec3 operator*(float s, Vec3 v) {
   return v * s;

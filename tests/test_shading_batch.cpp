@@ -1,5 +1,6 @@
 // Batched Fresnel reflectance, Henyey-Greenstein phase function and frames: bit for bit equal to
 // the scalar functions, including total internal reflection, grazing and index-matched cases.
+// Batched dielectric samples (one template with the scalar samplers): bit for bit.
 // Batched HG sampling: the pdf bit for bit, directions within the stated absolute bound (xsimd's
 // sincos of the azimuth is not libm's).
 #include <gtest/gtest.h>
@@ -182,26 +183,37 @@ uint32_t bits(float f) {
   return std::bit_cast<uint32_t>(f);
 }
 
-// Smooth, index-matched and rough interfaces from both sides, grazing and normal incidence.
-TEST(ShadingBatch, DielectricSampleMatchesScalarBitwise) {
-  std::mt19937 engine(13);
+// Directions (some grazing, one in the surface plane), interfaces and random numbers for one
+// batch of dielectric samples: smooth, index-matched and rough interfaces from both sides, in
+// mixed chunks and in chunks of one interface (which skip the other path).
+struct InterfaceLanes {
+  Lanes wx, wy, wz, eta, alpha, u0, u1, u_lobe;
+};
+InterfaceLanes random_interface_lanes(std::mt19937& engine, int trial) {
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   const float alphas[] = {0.0f, 1e-3f, 0.04f, 0.2f, 0.7f};
   const float etas[] = {1.5f, 1.0f, 1.33f, 2.4f};
+  InterfaceLanes in;
+  for (size_t i = 0; i < kLanes; ++i) {
+    Vec3 w = random_direction(engine, trial, i);
+    if (trial % 13 == 0) w = normalize(Vec3(w.x, w.y, 1e-4f * w.z));  // grazing
+    if (trial == 5) w = Vec3(1.0f, 0.0f, 0.0f);                       // w.z == 0
+    in.wx.v[i] = w.x, in.wy.v[i] = w.y, in.wz.v[i] = w.z;
+    const bool uniform = trial % 3 == 0;
+    in.eta.v[i] = uniform ? etas[(trial / 3) % 4] : etas[(trial + i) % 4];
+    in.alpha.v[i] = uniform ? alphas[(trial / 12) % 5] : alphas[(trial / 4 + i) % 5];
+    in.u0.v[i] = unit(engine), in.u1.v[i] = unit(engine), in.u_lobe.v[i] = unit(engine);
+  }
+  return in;
+}
+
+TEST(ShadingBatch, DielectricSampleMatchesScalarBitwise) {
+  std::mt19937 engine(13);
   int valid = 0, lanes = 0;
   for (int trial = 0; trial < 100000; ++trial) {
-    Lanes wx, wy, wz, eta, alpha, u0, u1, ul;
-    for (size_t i = 0; i < kLanes; ++i) {
-      Vec3 w = random_direction(engine, trial, i);
-      if (trial % 13 == 0) w = normalize(Vec3(w.x, w.y, 1e-4f * w.z));  // grazing
-      if (trial == 5) w = Vec3(1.0f, 0.0f, 0.0f);                       // wo.z == 0
-      wx.v[i] = w.x, wy.v[i] = w.y, wz.v[i] = w.z;
-      // Mixed chunks, and chunks of one interface (which skip the other path).
-      const bool uniform = trial % 3 == 0;
-      eta.v[i] = uniform ? etas[(trial / 3) % 4] : etas[(trial + i) % 4];
-      alpha.v[i] = uniform ? alphas[(trial / 12) % 5] : alphas[(trial / 4 + i) % 5];
-      u0.v[i] = unit(engine), u1.v[i] = unit(engine), ul.v[i] = unit(engine);
-    }
+    const InterfaceLanes in = random_interface_lanes(engine, trial);
+    const Lanes &wx = in.wx, &wy = in.wy, &wz = in.wz, &eta = in.eta, &alpha = in.alpha,
+                &u0 = in.u0, &u1 = in.u1, &ul = in.u_lobe;
     const simd::BsdfSampleBatch got =
         simd::dielectric_sample({eta.batch(), alpha.batch()}, {wx.batch(), wy.batch(), wz.batch()},
                                 u0.batch(), u1.batch(), ul.batch());
@@ -229,6 +241,38 @@ TEST(ShadingBatch, DielectricSampleMatchesScalarBitwise) {
   }
   // Most samples succeed: the comparison is not vacuous.
   EXPECT_GT(valid, lanes / 2);
+}
+
+// SNEE's transmission-only sampler: one template, so the batch form returns the scalar form's
+// direction bit for bit wherever the scalar sample succeeds, and fails where it fails.
+TEST(ShadingBatch, DielectricSampleTransmissionMatchesScalarBitwise) {
+  std::mt19937 engine(14);
+  int ok_lanes = 0, lanes = 0;
+  for (int trial = 0; trial < 100000; ++trial) {
+    const InterfaceLanes in = random_interface_lanes(engine, trial);
+    const Lanes &wx = in.wx, &wy = in.wy, &wz = in.wz, &eta = in.eta, &alpha = in.alpha,
+                &u0 = in.u0, &u1 = in.u1;
+    const Refracted<FloatBatch> got = simd::dielectric_sample_transmission(
+        simd::DielectricLanes{eta.batch(), alpha.batch()}, {wx.batch(), wy.batch(), wz.batch()},
+        u0.batch(), u1.batch());
+    const Lanes gx = to_lanes(got.direction.x), gy = to_lanes(got.direction.y),
+                gz = to_lanes(got.direction.z);
+    alignas(64) bool ok[kLanes];
+    got.ok.store_aligned(ok);
+    for (size_t i = 0; i < kLanes; ++i) {
+      Vec3 want;
+      const bool want_ok = dielectric_sample_transmission(
+          {eta.v[i], alpha.v[i]}, {wx.v[i], wy.v[i], wz.v[i]}, {u0.v[i], u1.v[i]}, &want);
+      ++lanes;
+      ASSERT_EQ(ok[i], want_ok) << "eta " << eta.v[i] << " alpha " << alpha.v[i];
+      if (!want_ok) continue;
+      ++ok_lanes;
+      ASSERT_EQ(bits(gx.v[i]), bits(want.x));
+      ASSERT_EQ(bits(gy.v[i]), bits(want.y));
+      ASSERT_EQ(bits(gz.v[i]), bits(want.z));
+    }
+  }
+  EXPECT_GT(ok_lanes, lanes / 2);
 }
 
 }  // namespace

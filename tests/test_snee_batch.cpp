@@ -409,7 +409,7 @@ TEST(SneeBottomToTopBatch, AgreesWithScalarSampler) {
         const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
             {in.vec(in.x_i), in.vec(in.omega_in), in.vec(in.x_k), in.vec(in.n_k), in.vec(in.ns_k),
              simd::FloatBatch::load_aligned(in.g), in.interface()},
-            options, u, simd::kLanes);
+            options, u);
         return read_lanes(b.x_j, b.omega_o, b.pdf, {b.placed, b.refracted});
       },
       [](const ExitSetup& e, const auto& u, const SneeMedium& medium, const SneeOptions& options,
@@ -460,7 +460,7 @@ TEST(SneeTopToBottomBatch, AgreesWithScalarSampler) {
              in.vec(wi),
              simd::FloatBatch::load_aligned(light_pdf),
              simd::FloatBatch::load_aligned(light_delta) != zero},
-            options, ub, simd::kLanes);
+            options, ub);
         std::array<LaneSample, simd::kLanes> out =
             read_lanes(b.x_j, in.vec(wi), b.pdf, {b.refracted, b.distanced});
         for (size_t l = 0; l < simd::kLanes; ++l) out[l].stage = lit[l] ? out[l].stage + 1 : 0;

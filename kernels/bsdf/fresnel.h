@@ -57,18 +57,35 @@ inline Rgb fresnel_conductor(float cos_i, Rgb eta, Rgb k) {
 }
 
 // Refracts w (pointing away from the surface) through the interface whose normal m lies on w's
-// side. eta = eta_w / eta_other. Returns false on total internal reflection. *wt points away
-// from the surface on the other side.
+// side. eta = eta_w / eta_other. `ok` is false on total internal reflection (the direction is
+// then meaningless); otherwise the direction points away from the surface on the other side.
+template <lane::Lane F>
+struct Refracted {
+  lane::Vec3Of<F> direction;
+  lane::MaskOf<F> ok;
+};
+template <lane::Lane F>
+Refracted<F> refract(const lane::Vec3Of<F>& w, const lane::Vec3Of<F>& m, F eta) {
+  using namespace lane;
+  const F one(1.0f);
+  const F c = dot(w, m);
+  const F cos2 = one - c * c;
+  const F sin2_t = eta * eta * select(F(0.0f) < cos2, cos2, F(0.0f));
+  const F k = eta * c - sqrt(one - sin2_t);
+  return {w * neg(eta) + m * k, sin2_t < one};
+}
+// The scalar form: false on total internal reflection, leaving *wt as it was.
 inline bool refract(Vec3 w, Vec3 m, float eta, Vec3* wt) {
-  const float c = dot(w, m);
-  const float sin2_t = eta * eta * std::max(0.0f, 1.0f - c * c);
-  if (sin2_t >= 1.0f) return false;
-  *wt = -eta * w + (eta * c - std::sqrt(1.0f - sin2_t)) * m;
-  return true;
+  const Refracted<float> r = refract<float>(w, m, eta);
+  if (r.ok) *wt = r.direction;
+  return r.ok;
 }
 
-inline Vec3 reflect(Vec3 w, Vec3 m) {
-  return 2.0f * dot(w, m) * m - w;
+// V is a lane type's 3-vector.
+template <class V>
+V reflect(const V& w, const V& m) {
+  using F = decltype(w.x);
+  return m * (F(2.0f) * dot(w, m)) - w;
 }
 
 }  // namespace snee

@@ -8,28 +8,48 @@
 
 namespace snee {
 
-// D(m); 0 for m.z <= 0. cos^4 (alpha^2 + tan^2)^2 = (alpha^2 cos^2 + sin^2)^2.
+// D(m); 0 for m.z <= 0. cos^4 (alpha^2 + tan^2)^2 = (alpha^2 cos^2 + sin^2)^2. F is the lane
+// type (scene/lane_math.h), as below.
+template <lane::Lane F>
+F ggx_d(const lane::Vec3Of<F>& m, F alpha) {
+  using namespace lane;
+  const F a2 = alpha * alpha;
+  const F denom = a2 * m.z * m.z + (m.x * m.x + m.y * m.y);
+  return select(m.z <= F(0.0f), F(0.0f), a2 / (F(kPi) * denom * denom));
+}
 inline float ggx_d(Vec3 m, float alpha) {
-  if (m.z <= 0.0f) return 0.0f;
-  const float a2 = alpha * alpha;
-  const float denom = a2 * m.z * m.z + (m.x * m.x + m.y * m.y);
-  return a2 / (kPi * denom * denom);
+  return ggx_d<float>(m, alpha);
 }
 
 // Smith G1 with the chi+(v.m / v.n) factor.
+template <lane::Lane F>
+F ggx_g1(const lane::Vec3Of<F>& v, const lane::Vec3Of<F>& m, F alpha) {
+  using namespace lane;
+  const F one(1.0f), zero(0.0f);
+  const F tan2 = (v.x * v.x + v.y * v.y) / (v.z * v.z);
+  const F g1 = F(2.0f) / (one + sqrt(one + alpha * alpha * tan2));
+  return select(v.z == zero || dot(v, m) * v.z <= zero, zero, g1);
+}
 inline float ggx_g1(Vec3 v, Vec3 m, float alpha) {
-  if (v.z == 0.0f || dot(v, m) * v.z <= 0.0f) return 0.0f;
-  const float tan2 = (v.x * v.x + v.y * v.y) / (v.z * v.z);
-  return 2.0f / (1.0f + std::sqrt(1.0f + alpha * alpha * tan2));
+  return ggx_g1<float>(v, m, alpha);
 }
 
-// m with density D(m) * m.z (solid angle): tan^2 theta_m = alpha^2 u / (1 - u).
+// m with density D(m) * m.z (solid angle): tan^2 theta_m = alpha^2 u0 / (1 - u0). The azimuth's
+// sine and cosine are libm's on every lane type, so the batched BSDF sample of shade_surface is
+// bit for bit the scalar one.
+template <lane::Lane F>
+lane::Vec3Of<F> ggx_sample_normal(F u0, F u1, F alpha) {
+  using namespace lane;
+  const F one(1.0f);
+  const F a2u = alpha * alpha * u0;
+  const F denom = (one - u0) + a2u;
+  const F cos_theta = sqrt((one - u0) / denom);
+  const F sin_theta = sqrt(a2u / denom);
+  const auto [sin_phi, cos_phi] = libm_sincos(F(2.0f * kPi) * u1);
+  return {sin_theta * cos_phi, sin_theta * sin_phi, cos_theta};
+}
 inline Vec3 ggx_sample_normal(Vec2 u, float alpha) {
-  const float a2u = alpha * alpha * u.x;
-  const float denom = (1.0f - u.x) + a2u;
-  const float cos_theta = std::sqrt((1.0f - u.x) / denom);
-  const float sin_theta = std::sqrt(a2u / denom);
-  return spherical_direction(sin_theta, cos_theta, 2.0f * kPi * u.y);
+  return ggx_sample_normal<float>(u.x, u.y, alpha);
 }
 
 inline float ggx_normal_pdf(Vec3 m, float alpha) {

@@ -22,11 +22,9 @@ struct BottomToTopBatch {
   BoolBatch placed, refracted;  // placement succeeded; and then the outward transmission
 };
 
-// u[0..5] as propose_bottom_to_top's. Lanes [0, active_lanes) are real exits (the GGX azimuth
-// is evaluated for those only, dielectric_batch.h).
+// u[0..5] as propose_bottom_to_top's.
 inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const SneeOptions& options,
-                                              const std::array<FloatBatch, 6>& u,
-                                              size_t active_lanes) {
+                                              const std::array<FloatBatch, 6>& u) {
   const FloatBatch zero(0.0f), one(1.0f);
   const JointImportanceSampleBatch placed = joint_importance_sample(
       {e.x_i, e.omega_in, e.x_k, e.g, options.c_joint}, u[0], u[1], u[2], u[3]);
@@ -43,13 +41,13 @@ inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const S
   const FrameBatch frame = FrameBatch::from_normal(e.ns_k);
   const Vec3Batch local_kj = frame.to_local(omega_kj);
   const BoolBatch delta = e.interface.delta();
-  BoolBatch sampled;
-  const Vec3Batch local_o =
-      sample_transmission(e.interface, local_kj, u[4], u[5], active_lanes, &sampled);
+  const Refracted<FloatBatch> sampled =
+      dielectric_sample_transmission(e.interface, local_kj, u[4], u[5]);
+  const Vec3Batch& local_o = sampled.direction;
   Vec3Batch omega_o = frame.to_world(local_o);
   omega_o = div(omega_o, xsimd::sqrt(dot(omega_o, omega_o)));
   out.omega_o = omega_o;
-  out.refracted = sampled && dot(e.ns_k, omega_o) > zero && dot(e.n_k, omega_o) > zero;
+  out.refracted = sampled.ok && dot(e.ns_k, omega_o) > zero && dot(e.n_k, omega_o) > zero;
 
   const FloatBatch probe = probe_area_pdf(options.probe, e.omega_in, e.g, e.x_i, e.x_k, e.n_k);
   const FloatBatch btdf =

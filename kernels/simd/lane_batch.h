@@ -3,6 +3,7 @@
 // lane type runs on FloatBatch with the operations below.
 #pragma once
 
+#include <cmath>
 #include <utility>
 
 #include "kernels/simd/arch.h"
@@ -40,6 +41,15 @@ struct ops<simd::FloatBatch> {
   }
   static std::pair<simd::FloatBatch, simd::FloatBatch> sincos(simd::FloatBatch x) {
     return simd::lanewise_sincos(x);
+  }
+  static std::pair<simd::FloatBatch, simd::FloatBatch> libm_sincos(simd::FloatBatch x) {
+    alignas(64) float v[simd::kLanes], sin_v[simd::kLanes], cos_v[simd::kLanes];
+    x.store_aligned(v);
+    for (size_t l = 0; l < simd::kLanes; ++l) {
+      sin_v[l] = std::sin(v[l]);
+      cos_v[l] = std::cos(v[l]);
+    }
+    return {simd::FloatBatch::load_aligned(sin_v), simd::FloatBatch::load_aligned(cos_v)};
   }
 };
 

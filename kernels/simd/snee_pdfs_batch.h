@@ -48,7 +48,7 @@ inline TransmissionPair transmission_pair(const DielectricLanes& p, const Vec3Ba
   const BoolBatch ok = h.z > zero && kj_h * local_kj.z > zero && o_h * local_o.z > zero &&
                        local_kj.z * local_o.z < zero;
   const FloatBatch denom = o_h + p.eta * kj_h;
-  const FloatBatch d_h = dielectric_detail::ggx_d(h, p.alpha) * h.z / (denom * denom);
+  const FloatBatch d_h = ggx_d(h, p.alpha) * h.z / (denom * denom);
   return {h, xsimd::select(ok, d_h * p.eta * p.eta * xsimd::abs(kj_h), zero),
           xsimd::select(ok, d_h * xsimd::abs(o_h), zero)};
 }

@@ -54,7 +54,7 @@ inline FloatBatch mean3(const Vec3Batch& v) {
 }  // namespace snee_weights_detail
 
 inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& options) {
-  using namespace dielectric_detail;
+  using namespace dielectric_lanes;
   using namespace snee_weights_detail;
   const FloatBatch zero(0.0f), one(1.0f);
 
@@ -91,7 +91,7 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   const TransmissionPair btdf = transmission_pair(s.interface, local_kj, local_o);
   // The tracer's BSDF at x_k: value and pdf of the rough transmission, or the smooth lobe's
   // transmission probability.
-  const Lobe rough = rough_transmission(s.interface, local_kj, local_o, btdf.h);
+  const Lobe<FloatBatch> rough = rough_transmission(s.interface, local_kj, local_o, btdf.h);
   const BoolBatch rough_ok = rough.ok && btdf.h.z > zero;
   const FloatBatch fresnel_o = fresnel_dielectric(cos_o, eta);
   const FloatBatch smooth_transmit = one - fresnel_dielectric(cos_k_j_shading, one / eta);

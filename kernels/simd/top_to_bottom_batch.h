@@ -32,21 +32,20 @@ struct TopToBottomBatch {
   BoolBatch distanced;  // and then the distance sample
 };
 
-// u[0..4] are propose_top_to_bottom's u[3..7]. Lanes [0, active_lanes) are real exits.
+// u[0..4] are propose_top_to_bottom's u[3..7].
 inline TopToBottomBatch propose_top_to_bottom(const TopToBottomExits& e, const SneeOptions& options,
-                                              const std::array<FloatBatch, 5>& u,
-                                              size_t active_lanes) {
+                                              const std::array<FloatBatch, 5>& u) {
   const FloatBatch zero(0.0f), one(1.0f);
   const FrameBatch frame = FrameBatch::from_normal(e.ns_k);
   const Vec3Batch local_o = frame.to_local(e.light_wi);
-  BoolBatch transmitted;
-  const Vec3Batch local_kj =
-      sample_transmission(e.interface, local_o, u[0], u[1], active_lanes, &transmitted);
+  const Refracted<FloatBatch> transmitted =
+      dielectric_sample_transmission(e.interface, local_o, u[0], u[1]);
+  const Vec3Batch& local_kj = transmitted.direction;
   Vec3Batch omega_kj = frame.to_world(local_kj);
   omega_kj = div(omega_kj, xsimd::sqrt(dot(omega_kj, omega_kj)));
   const FloatBatch cos_kj = neg(dot(e.ns_k, omega_kj)), cos_o = dot(e.ns_k, e.light_wi);
   TopToBottomBatch out;
-  out.refracted = transmitted && cos_kj > zero && dot(e.n_k, omega_kj) < zero;
+  out.refracted = transmitted.ok && cos_kj > zero && dot(e.n_k, omega_kj) < zero;
 
   const EquiangularBatch equiangular(e.x_k, omega_kj, e.x_i);
   const BoolBatch exponential = u[2] < FloatBatch(options.c_exponential);
