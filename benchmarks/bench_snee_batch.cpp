@@ -111,8 +111,9 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
       bool lit[simd::kLanes];
       for (size_t l = 0; l < simd::kLanes; ++l) {
         const float* u = e.u_of(k + l);
-        const LightSample& s = samples[l] =
-            e.lights.sample(e.exits[k + l].x_k, u[0], Vec2{u[1], u[2]});
+        const LightSample& s = samples[l] = e.lights.sample(
+            e.exits[k + l].x_k, u[TopToBottomRandoms::kLightSelection],
+            Vec2{u[TopToBottomRandoms::kLightPoint], u[TopToBottomRandoms::kLightPoint + 1]});
         lit[l] = lights_exit_point(s, e.exits[k + l].n_k, e.exits[k + l].ns_k);
         w[0][l] = s.wi.x;
         w[1][l] = s.wi.y;
@@ -120,8 +121,8 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
         pdf[l] = s.pdf;
         delta[l] = s.delta ? 1.0f : 0.0f;
       }
-      std::array<simd::FloatBatch, 5> u;
-      for (int n = 0; n < 5; ++n) u[n] = e.numbers(k, 3 + n);
+      std::array<simd::FloatBatch, kTopToBottomDimensions> u;
+      for (int n = 0; n < kTopToBottomDimensions; ++n) u[n] = e.numbers(k, n);
       const simd::TopToBottomBatch b = simd::propose_top_to_bottom(
           {e.vector(k, x_i_of),
            e.vector(k, omega_in_of),
@@ -178,7 +179,8 @@ void BM_SneeProposeBottomToTopSimd(benchmark::State& state) {
   for (auto _ : state) {
     for (size_t k = 0; k < bench::kItems; k += simd::kLanes) {
       std::array<simd::FloatBatch, kBottomToTopDimensions> u;
-      for (int n = 0; n < kBottomToTopDimensions; ++n) u[n] = e.numbers(k, 8 + n);
+      for (int n = 0; n < kBottomToTopDimensions; ++n)
+        u[n] = e.numbers(k, kTopToBottomDimensions + n);
       const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
           {e.vector(k, x_i_of), e.vector(k, omega_in_of), e.vector(k, x_k_of), e.vector(k, n_k_of),
            e.vector(k, ns_k_of), simd::FloatBatch(e.medium.g), dielectric},

@@ -29,7 +29,7 @@ SneeSuffix exit_suffix(const KernelContext& ctx, Vec3 x_i, Vec3 omega_in, Vec3 x
   s.n_k = n_k;
   s.ns_k = ns_k;
   s.omega_o = omega_o;
-  s.medium = {m.sigma_s, m.sigma_t, m.g};
+  s.medium = m.medium;
   s.interface = interface;
   s.light_pdf = light_pdf;
   s.light_delta = delta;
@@ -177,12 +177,15 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
     // Every reflection meets the boundary at the refracted angle of the entry, so each
     // reflects the entry's Fresnel reflectance F_r (the same from both sides of the pair).
     const double reflectance = fresnel_dielectric(static_cast<float>(cos_l), interface.eta);
-    const double scale = hg_phase(dot(w_before, -chain.omega_last), m.g) * (1.0 - reflectance) *
-                         std::pow(reflectance, chain.reflections) * cos_l /
+    const double scale = hg_phase(dot(w_before, -chain.omega_last), m.medium.asymmetry(x_j)) *
+                         (1.0 - reflectance) * std::pow(reflectance, chain.reflections) * cos_l /
                          (chain.jacobian * light.pdf * choice.probability);
-    const Rgb unweighted = beta * light.radiance *
-                           transmittance(m.sigma_t, static_cast<float>(chain.length)) *
-                           static_cast<float>(scale);
+    // The chain bends at its reflections; in a homogeneous medium (the manifold strategy's
+    // premise) its transmittance is that of its total length.
+    const Rgb unweighted =
+        beta * light.radiance *
+        m.medium.transmittance(x_j, -chain.omega_last, static_cast<float>(chain.length)) *
+        static_cast<float>(scale);
     if (is_black(unweighted) || !is_finite(unweighted)) continue;
     const uint32_t first =
         shadow.add_segment(chain.y + ctx.epsilon * chain.n, light.wi, kInfinity, kVisibilityOnly);
@@ -237,7 +240,7 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
   s.omega_in = state.direction_in_i(slot);
   s.x_j = x_j;
   s.omega_o = light.wi;
-  s.medium = {m.sigma_s, m.sigma_t, m.g};
+  s.medium = m.medium;
   s.interface = interface;
   s.light_pdf = light.pdf;
   s.light_delta = true;
@@ -255,11 +258,11 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
     if (!(cos_l > 0) || !(jacobian > 0)) continue;
     // docs/method.md 3.10: f_p T (1 - F_r) E cos_L / J per unit volume at x_j, over the
     // light's selection probability.
-    const double scale = hg_phase(dot(w_before, -exit.omega_r), m.g) *
+    const double scale = hg_phase(dot(w_before, -exit.omega_r), m.medium.asymmetry(x_j)) *
                          (1.0 - fresnel_dielectric(static_cast<float>(cos_l), interface.eta)) *
                          cos_l / (jacobian * light.pdf);
     const Rgb unweighted = beta * light.radiance *
-                           transmittance(m.sigma_t, static_cast<float>(exit.t)) *
+                           m.medium.transmittance(x_j, -exit.omega_r, static_cast<float>(exit.t)) *
                            static_cast<float>(scale);
     if (is_black(unweighted) || !is_finite(unweighted)) continue;
     s.x_k = exit.y;

@@ -128,7 +128,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       pixel_spread(2.0f * image_half_extents(s.camera).y / static_cast<float>(s.camera.height)),
       textures(s.textures.empty() ? nullptr : std::make_shared<const TextureSet>(s.textures)) {
   media.reserve(s.media.size());
-  for (const Medium& m : s.media) media.push_back({m.sigma_s, m.sigma_t(), m.g, true});
+  for (const Medium& m : s.media) media.push_back({{m.sigma_s, m.sigma_t(), m.g}, true});
   std::vector<int> boundaries(s.media.size(), 0);
   surfaces.reserve(s.shapes.size());
   for (const Shape& shape : s.shapes) {
@@ -166,7 +166,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
         boundaries[static_cast<size_t>(shape.interior_medium)] == 1) {
       m.manifold_sphere = static_cast<int32_t>(i);
       m.manifold_interior_clear = nothing_reaches_into(s, i);
-      m.chain_search = chain_search_probability(m.sigma_t, shape.radius);
+      m.chain_search = chain_search_probability(m.medium.sigma_t, shape.radius);
     } else {
       m.manifold_unsupported = true;
     }

@@ -12,6 +12,7 @@
 #include "kernels/bsdf/dielectric.h"
 #include "kernels/bsdf/diffuse_transmission.h"
 #include "kernels/lights/light_table.h"
+#include "kernels/medium/homogeneous_medium.h"
 #include "kernels/snee/snee_options.h"
 #include "kernels/snee_counters.h"
 #include "scene/camera_frame.h"
@@ -61,8 +62,7 @@ struct SurfaceInfo {
 };
 
 struct MediumInfo {
-  Rgb sigma_s, sigma_t;
-  float g;
+  HomogeneousMedium medium;
   // True when every boundary of this medium is an index-matched (null) interface, so a
   // straight shadow ray from inside can reach a light: only then is medium NEE worth a ray.
   bool straight_nee;

@@ -51,19 +51,23 @@ void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chun
                     chunk.load(state.channel_p_b)};
   const Vec3Batch beta{chunk.load(state.throughput_r), chunk.load(state.throughput_g),
                        chunk.load(state.throughput_b)};
-  const FloatBatch t = simd::free_flight_sample(m.sigma_t, p, rf.u[0], rf.u[1]);
+  const Vec3Batch origin{chunk.load(state.origin_x), chunk.load(state.origin_y),
+                         chunk.load(state.origin_z)};
+  const Vec3Batch w{chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)};
+  const FloatBatch t = m.sample_distance(origin, w, p, rf.u[0], rf.u[1]);
+  const Vec3Batch x = origin + w * t;
   const FloatBatch t_hit = chunk.load(state.hit_t);
   const auto scattered = t < t_hit;
   const auto crossed = !scattered && xsimd::isfinite(t_hit);
 
   // Reaching the boundary: transmittance over the survival probability.
-  const Vec3Batch tr_hit = simd::transmittance(m.sigma_t, t_hit);
+  const Vec3Batch tr_hit = m.transmittance(origin, w, t_hit);
   const FloatBatch survival = simd::dot(p, tr_hit);
   // Scattering at t: sigma_s T(t) / pdf(t) per channel, and each channel's share of pdf(t).
-  const Vec3Batch tr = simd::transmittance(m.sigma_t, t);
-  const Vec3Batch channel_pdfs = simd::free_flight_channel_pdfs(m.sigma_t, tr);
+  const Vec3Batch tr = m.transmittance(origin, w, t);
+  const Vec3Batch channel_pdfs = m.channel_pdfs(origin, w, t, tr);
   const FloatBatch pdf = simd::dot(p, channel_pdfs);
-  const Vec3Batch beta_out = select(scattered, div(mul(mul(beta, m.sigma_s), tr), pdf),
+  const Vec3Batch beta_out = select(scattered, div(mul(mul(beta, m.scattering(x)), tr), pdf),
                                     select(crossed, div(mul(beta, tr_hit), survival), beta));
   const Vec3Batch p_out = select(scattered, div(mul(p, channel_pdfs), pdf),
                                  select(crossed, div(mul(p, tr_hit), survival), p));
@@ -74,12 +78,9 @@ void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chun
   chunk.store(state.channel_p_g, p_out.y);
   chunk.store(state.channel_p_b, p_out.z);
 
-  const Vec3Batch w{chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)};
-  const simd::HgSampleBatch phase = simd::hg_sample(w, m.g, rp.u[0], rp.u[1]);
+  const simd::HgSampleBatch phase = simd::hg_sample(w, m.asymmetry(x), rp.u[0], rp.u[1]);
   t.store_aligned(out.t.data() + k);
-  (chunk.load(state.origin_x) + w.x * t).store_aligned(out.x.data() + k);
-  (chunk.load(state.origin_y) + w.y * t).store_aligned(out.y.data() + k);
-  (chunk.load(state.origin_z) + w.z * t).store_aligned(out.z.data() + k);
+  simd::store_aligned(x, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   phase.direction.x.store_aligned(out.wx.data() + k);
   phase.direction.y.store_aligned(out.wy.data() + k);
   phase.direction.z.store_aligned(out.wz.data() + k);
@@ -95,7 +96,7 @@ void medium_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 x, 
   const RandomBlock r = draw(ctx, state, s, RngPurpose::kLightSample);
   const LightSample ls = ctx.lights->sample(x, r.u[0], {r.u[1], r.u[2]});
   if (!ls.valid || ls.pdf <= 0) return;
-  const float phase = hg_phase(dot(w_before, ls.wi), m.g);
+  const float phase = hg_phase(dot(w_before, ls.wi), m.medium.asymmetry(x));
   const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, phase);
   const Rgb contribution = state.throughput(s) * ls.radiance * (phase * weight / ls.pdf);
   if (is_black(contribution)) return;
@@ -129,9 +130,10 @@ Vec3 keep_clear_of_boundary(const KernelContext& ctx, const PathState& state, ui
 // The AOV albedo of a medium vertex (first_hit_aovs.h), which has no surface: sigma_s / sigma_t
 // per channel, 0 in a channel that does not interact (spectral MIS may scatter following
 // another). Its AOV normal faces back along the arriving ray.
-Rgb single_scattering_albedo(const MediumInfo& m) {
+Rgb single_scattering_albedo(const HomogeneousMedium& m, Vec3 x) {
+  const Rgb sigma_s = m.scattering(x), sigma_t = m.extinction(x);
   Rgb a(0.0f);
-  for (int c = 0; c < 3; ++c) a[c] = m.sigma_t[c] > 0 ? m.sigma_s[c] / m.sigma_t[c] : 0.0f;
+  for (int c = 0; c < 3; ++c) a[c] = sigma_t[c] > 0 ? sigma_s[c] / sigma_t[c] : 0.0f;
   return a;
 }
 
@@ -166,7 +168,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     state.depth[s] += 1;
     state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
     state.push_vertex(s, x, w_before, true);
-    close_aov_chain(state, s, flights.t[k], single_scattering_albedo(m), -w_before);
+    close_aov_chain(state, s, flights.t[k], single_scattering_albedo(m.medium, x), -w_before);
     if (static_cast<int>(state.depth[s]) >= ctx.max_depth || is_black(state.throughput(s))) {
       q.retire.push(s);
       continue;

@@ -1,5 +1,4 @@
-// The parameters of the media a chunk of slots travels in, one lane per slot, for the batched
-// stage kernels.
+// The media a chunk of slots travels in, one lane per slot, for the batched stage kernels.
 #pragma once
 
 #include <algorithm>
@@ -7,13 +6,11 @@
 #include "kernels/kernel_context.h"
 #include "kernels/path_state.h"
 #include "kernels/simd/slot_chunk.h"
+#include "kernels/simd/vec3_batch.h"
 
 namespace snee {
 
-struct MediumLanes {
-  simd::Vec3Batch sigma_s, sigma_t;
-  simd::FloatBatch g;
-};
+using MediumLanes = HomogeneousMediumT<simd::FloatBatch>;
 
 // One broadcast when the chunk is in one medium (the common case: one translucent object),
 // else a lane-by-lane lookup.
@@ -23,14 +20,12 @@ inline MediumLanes load_media(const KernelContext& ctx, const PathState& state,
   alignas(64) int32_t index[simd::kLanes];
   chunk.load(state.medium).store_aligned(index);
   if (std::all_of(index, index + simd::kLanes, [&](int32_t i) { return i == index[0]; })) {
-    const MediumInfo& m = ctx.media[static_cast<size_t>(index[0])];
-    return {{FloatBatch(m.sigma_s.x), FloatBatch(m.sigma_s.y), FloatBatch(m.sigma_s.z)},
-            {FloatBatch(m.sigma_t.x), FloatBatch(m.sigma_t.y), FloatBatch(m.sigma_t.z)},
-            FloatBatch(m.g)};
+    const HomogeneousMedium& m = ctx.media[static_cast<size_t>(index[0])].medium;
+    return {splat<FloatBatch>(m.sigma_s), splat<FloatBatch>(m.sigma_t), FloatBatch(m.g)};
   }
   alignas(64) float v[7][simd::kLanes];
   for (size_t l = 0; l < simd::kLanes; ++l) {
-    const MediumInfo& m = ctx.media[static_cast<size_t>(index[l])];
+    const HomogeneousMedium& m = ctx.media[static_cast<size_t>(index[l])].medium;
     const float values[7] = {m.sigma_s.x, m.sigma_s.y, m.sigma_s.z, m.sigma_t.x,
                              m.sigma_t.y, m.sigma_t.z, m.g};
     for (int c = 0; c < 7; ++c) v[c][l] = values[c];

@@ -1,5 +1,4 @@
 #include "kernels/bsdf/fresnel.h"
-#include "kernels/medium/free_flight.h"
 #include "kernels/path_ops.h"
 #include "kernels/stages.h"
 
@@ -51,7 +50,7 @@ void trace_tracked_segments(const KernelContext& ctx, StageQueues& q, KernelCoun
         const float t = hit ? batch.tfar(b) : remaining[i];
         if (media[i] >= 0 && std::isfinite(t)) {
           transmittance[i] *=
-              snee::transmittance(ctx.media[static_cast<size_t>(media[i])].sigma_t, t);
+              ctx.media[static_cast<size_t>(media[i])].medium.transmittance(origins[i], d, t);
         }
         if (!hit) {
           active[k] = kInvalidId;  // reached the light

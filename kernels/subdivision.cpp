@@ -87,9 +87,9 @@ void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
   const auto at = [&](const AlignedArray<float>& a) {
     return simd::load_padded(a.data() + k, count);
   };
-  std::array<FloatBatch, 5> u;
-  for (size_t n = 0; n < u.size(); ++n)
-    u[n] = FloatBatch::load_aligned(scratch.randoms.u[3 + n].data() + k);
+  std::array<FloatBatch, kTopToBottomDimensions> u;
+  for (int n = 0; n < kTopToBottomDimensions; ++n)
+    u[n] = FloatBatch::load_aligned(scratch.randoms.top_to_bottom(n).data() + k);
   const simd::TopToBottomBatch tb =
       simd::propose_top_to_bottom({e.x_i,
                                    e.omega_in,
@@ -113,8 +113,8 @@ void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
 void sample_bottom_to_top_chunk(const KernelContext& ctx, const ChunkExits& e,
                                 const SubdivisionRandoms& randoms, StrategyResults& out, size_t k) {
   std::array<simd::FloatBatch, kBottomToTopDimensions> u;
-  for (size_t n = 0; n < u.size(); ++n)
-    u[n] = simd::FloatBatch::load_aligned(randoms.u[8 + n].data() + k);
+  for (int n = 0; n < kBottomToTopDimensions; ++n)
+    u[n] = simd::FloatBatch::load_aligned(randoms.bottom_to_top(n).data() + k);
   const simd::BottomToTopBatch bt = simd::propose_bottom_to_top(
       {e.x_i, e.omega_in, e.x_k, e.n_k, e.ns_k, e.medium.g, e.interface}, ctx.snee, u);
   simd::store_aligned(bt.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
@@ -127,9 +127,13 @@ void sample_bottom_to_top_chunk(const KernelContext& ctx, const ChunkExits& e,
 // light), with whether each direction is usable: a light above x_k's horizon.
 void sample_lights(const KernelContext& ctx, const ExitPointQueue& exits,
                    const SubdivisionRandoms& randoms, TopToBottomLights& out) {
+  using R = TopToBottomRandoms;
+  const float* selection = randoms.top_to_bottom(R::kLightSelection).data();
+  const float* point0 = randoms.top_to_bottom(R::kLightPoint).data();
+  const float* point1 = randoms.top_to_bottom(R::kLightPoint + 1).data();
   for (size_t i = 0; i < exits.size(); ++i) {
     const LightSample light =
-        ctx.lights->sample(exits.x_k(i), randoms.u[0][i], Vec2{randoms.u[1][i], randoms.u[2][i]});
+        ctx.lights->sample(exits.x_k(i), selection[i], Vec2{point0[i], point1[i]});
     const bool lit = lights_exit_point(light, exits.n_k(i), exits.ns_k(i));
     out.samples[i] = light;
     out.wx[i] = light.wi.x;
@@ -261,7 +265,7 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
   for (size_t i = 0; i < exits.size(); ++i) {
     const uint32_t s = exits.slot(i);
     const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[s])];
-    const SneeMedium medium{m.sigma_s, m.sigma_t, m.g};
+    const SneeMedium& medium = m.medium;
     const SneeOrigin origin{state.vertex_j(s), state.direction_in_j(s)};
     const ExitPoint exit{exits.x_k(i),
                          exits.n_k(i),

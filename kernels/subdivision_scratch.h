@@ -13,12 +13,17 @@
 namespace snee {
 
 // The exits' random numbers by queue position: for each of the two strategies two Philox
-// blocks of four numbers (drawn in SIMD chunks, used per exit).
+// blocks of four numbers (drawn in SIMD chunks, used per exit), read by the names of
+// snee/strategy_randoms.h.
 struct SubdivisionRandoms {
   static constexpr int kBlocks = 4;  // top-to-bottom: 2, bottom-to-top: 2
+  static_assert(kTopToBottomDimensions == 8 && kBottomToTopDimensions <= 8);
   explicit SubdivisionRandoms(size_t capacity) {
     for (AlignedArray<float>& a : u) a = AlignedArray<float>(padded_capacity(capacity));
   }
+  // Number n of top-to-bottom's u (TopToBottomRandoms), and of bottom-to-top's.
+  const AlignedArray<float>& top_to_bottom(int n) const { return u[n]; }
+  const AlignedArray<float>& bottom_to_top(int n) const { return u[kTopToBottomDimensions + n]; }
   // u[4 b + j]: number j of block b at each queue position.
   std::array<AlignedArray<float>, 4 * kBlocks> u;
 };

@@ -430,22 +430,25 @@ TEST(SneeTopToBottomBatch, AgreesWithScalarSampler) {
       75, true,
       [](const SamplerLanes& in, const auto& us, const SneeMedium& medium,
          const SneeOptions& options, const LightTable& lights) {
-        alignas(64) float u[5][simd::kLanes], wi[3][simd::kLanes], light_pdf[simd::kLanes],
-            light_delta[simd::kLanes];
+        alignas(64) float u[kTopToBottomDimensions][simd::kLanes], wi[3][simd::kLanes],
+            light_pdf[simd::kLanes], light_delta[simd::kLanes];
         std::array<bool, simd::kLanes> lit;
         for (size_t l = 0; l < simd::kLanes; ++l) {
+          using R = TopToBottomRandoms;
           const LightSample light =
-              lights.sample(in.setups[l].exit.x_k, us[l][0], Vec2{us[l][1], us[l][2]});
+              lights.sample(in.setups[l].exit.x_k, us[l][R::kLightSelection],
+                            Vec2{us[l][R::kLightPoint], us[l][R::kLightPoint + 1]});
           lit[l] = lights_exit_point(light, in.setups[l].exit.n_k, in.setups[l].exit.ns_k);
           wi[0][l] = light.wi.x;
           wi[1][l] = light.wi.y;
           wi[2][l] = light.wi.z;
           light_pdf[l] = light.pdf;
           light_delta[l] = light.delta ? 1.0f : 0.0f;
-          for (int n = 0; n < 5; ++n) u[n][l] = us[l][3 + n];
+          for (int n = 0; n < kTopToBottomDimensions; ++n) u[n][l] = us[l][n];
         }
-        std::array<simd::FloatBatch, 5> ub;
-        for (int n = 0; n < 5; ++n) ub[n] = simd::FloatBatch::load_aligned(u[n]);
+        std::array<simd::FloatBatch, kTopToBottomDimensions> ub;
+        for (int n = 0; n < kTopToBottomDimensions; ++n)
+          ub[n] = simd::FloatBatch::load_aligned(u[n]);
         const simd::FloatBatch zero(0.0f);
         const simd::TopToBottomBatch b = simd::propose_top_to_bottom(
             {in.vec(in.x_i),

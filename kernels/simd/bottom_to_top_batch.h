@@ -7,6 +7,7 @@
 
 #include "kernels/simd/joint_importance_batch.h"
 #include "kernels/simd/snee_pdfs_batch.h"
+#include "kernels/snee/strategy_randoms.h"
 
 namespace snee::simd {
 
@@ -22,12 +23,15 @@ struct BottomToTopBatch {
   BoolBatch placed, refracted;  // placement succeeded; and then the outward transmission
 };
 
-// u[0..5] as propose_bottom_to_top's.
-inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const SneeOptions& options,
-                                              const std::array<FloatBatch, 6>& u) {
+// u as propose_bottom_to_top's.
+inline BottomToTopBatch propose_bottom_to_top(
+    const BottomToTopExits& e, const SneeOptions& options,
+    const std::array<FloatBatch, kBottomToTopDimensions>& u) {
+  using R = BottomToTopRandoms;
   const FloatBatch zero(0.0f), one(1.0f);
-  const JointImportanceSampleBatch placed = joint_importance_sample(
-      {e.x_i, e.omega_in, e.x_k, e.g, options.c_joint}, u[0], u[1], u[2], u[3]);
+  const JointImportanceSampleBatch placed =
+      joint_importance_sample({e.x_i, e.omega_in, e.x_k, e.g, options.c_joint}, u[R::kPlacement],
+                              u[R::kPlacement + 1], u[R::kPlacement + 2], u[R::kPlacement + 3]);
   const Vec3Batch to_k = sub(e.x_k, placed.x_j);
   const FloatBatch r_jk = xsimd::sqrt(dot(to_k, to_k));
   const Vec3Batch omega_kj = div(negate(to_k), r_jk);
@@ -41,8 +45,8 @@ inline BottomToTopBatch propose_bottom_to_top(const BottomToTopExits& e, const S
   const FrameBatch frame = FrameBatch::from_normal(e.ns_k);
   const Vec3Batch local_kj = frame.to_local(omega_kj);
   const BoolBatch delta = e.interface.delta();
-  const Refracted<FloatBatch> sampled =
-      dielectric_sample_transmission(e.interface, local_kj, u[4], u[5]);
+  const Refracted<FloatBatch> sampled = dielectric_sample_transmission(
+      e.interface, local_kj, u[R::kOutwardNormal], u[R::kOutwardNormal + 1]);
   const Vec3Batch& local_o = sampled.direction;
   Vec3Batch omega_o = frame.to_world(local_o);
   omega_o = div(omega_o, xsimd::sqrt(dot(omega_o, omega_o)));

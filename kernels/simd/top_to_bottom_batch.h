@@ -12,6 +12,7 @@
 
 #include "kernels/simd/free_flight_batch.h"
 #include "kernels/simd/snee_pdfs_batch.h"
+#include "kernels/snee/strategy_randoms.h"
 
 namespace snee::simd {
 
@@ -32,14 +33,16 @@ struct TopToBottomBatch {
   BoolBatch distanced;  // and then the distance sample
 };
 
-// u[0..4] are propose_top_to_bottom's u[3..7].
-inline TopToBottomBatch propose_top_to_bottom(const TopToBottomExits& e, const SneeOptions& options,
-                                              const std::array<FloatBatch, 5>& u) {
+// u as propose_top_to_bottom's; the light's numbers are already spent.
+inline TopToBottomBatch propose_top_to_bottom(
+    const TopToBottomExits& e, const SneeOptions& options,
+    const std::array<FloatBatch, kTopToBottomDimensions>& u) {
+  using R = TopToBottomRandoms;
   const FloatBatch zero(0.0f), one(1.0f);
   const FrameBatch frame = FrameBatch::from_normal(e.ns_k);
   const Vec3Batch local_o = frame.to_local(e.light_wi);
-  const Refracted<FloatBatch> transmitted =
-      dielectric_sample_transmission(e.interface, local_o, u[0], u[1]);
+  const Refracted<FloatBatch> transmitted = dielectric_sample_transmission(
+      e.interface, local_o, u[R::kInwardNormal], u[R::kInwardNormal + 1]);
   const Vec3Batch& local_kj = transmitted.direction;
   Vec3Batch omega_kj = frame.to_world(local_kj);
   omega_kj = div(omega_kj, xsimd::sqrt(dot(omega_kj, omega_kj)));
@@ -48,9 +51,10 @@ inline TopToBottomBatch propose_top_to_bottom(const TopToBottomExits& e, const S
   out.refracted = transmitted.ok && cos_kj > zero && dot(e.n_k, omega_kj) < zero;
 
   const EquiangularBatch equiangular(e.x_k, omega_kj, e.x_i);
-  const BoolBatch exponential = u[2] < FloatBatch(options.c_exponential);
-  const FloatBatch t = xsimd::select(exponential, free_flight_sample(e.sigma_t, u[3], u[4]),
-                                     equiangular.sample(u[4]));
+  const BoolBatch exponential = u[R::kDistanceTechnique] < FloatBatch(options.c_exponential);
+  const FloatBatch t = xsimd::select(
+      exponential, free_flight_sample(e.sigma_t, u[R::kDistanceChannel], u[R::kDistance]),
+      equiangular.sample(u[R::kDistance]));
   const FloatBatch flight = free_flight_pdf(e.sigma_t, t);
   const FloatBatch distance = distance_mixture_pdf(options.c_exponential, flight, equiangular, t);
   out.x_j = add(e.x_k, scale(omega_kj, t));

@@ -64,7 +64,9 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kTopToBottomDimensions> u) {
-  const LightSample light = lights.sample(exit.x_k, u[0], Vec2{u[1], u[2]});
+  using R = TopToBottomRandoms;
+  const LightSample light = lights.sample(exit.x_k, u[R::kLightSelection],
+                                          Vec2{u[R::kLightPoint], u[R::kLightPoint + 1]});
   if (!lights_exit_point(light, exit.n_k, exit.ns_k)) {
     return failed_proposal(SneeFailure::kNoLight);
   }
@@ -75,7 +77,8 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
   const Frame frame = Frame::from_normal(exit.ns_k);
   const Vec3 local_o = frame.to_local(light.wi);
   Vec3 local_kj;
-  if (!dielectric_sample_transmission(exit.interface, local_o, Vec2{u[3], u[4]}, &local_kj)) {
+  if (!dielectric_sample_transmission(
+          exit.interface, local_o, Vec2{u[R::kInwardNormal], u[R::kInwardNormal + 1]}, &local_kj)) {
     return failed_proposal(SneeFailure::kRefraction);
   }
   const Vec3 omega_kj = normalize(frame.to_world(local_kj));
@@ -86,7 +89,8 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
 
   const DistanceMixture mixture{medium.sigma_t, options.c_exponential, exit.x_k, omega_kj,
                                 origin.x_i};
-  const DistanceSample distance = distance_mixture_sample(mixture, u[5], u[6], u[7]);
+  const DistanceSample distance = distance_mixture_sample(mixture, u[R::kDistanceTechnique],
+                                                          u[R::kDistanceChannel], u[R::kDistance]);
   if (!distance.valid || !(distance.t > 0)) return failed_proposal(SneeFailure::kZero);
   const Vec3 x_j = exit.x_k + distance.t * omega_kj;
 
@@ -126,7 +130,9 @@ SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kBottomToTopDimensions> u) {
   const JointImportance jis{origin.x_i, origin.omega_in, exit.x_k, medium.g, options.c_joint};
-  const JointImportanceSample placed = joint_importance_sample(jis, u.first<4>());
+  using R = BottomToTopRandoms;
+  const JointImportanceSample placed =
+      joint_importance_sample(jis, u.subspan<R::kPlacement, kJointImportanceDimensions>());
   if (!placed.valid) return failed_proposal(SneeFailure::kPlacement);
   const Vec3 x_j = placed.x_j;
   const Vec3 to_k = exit.x_k - x_j;
@@ -143,7 +149,9 @@ SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
   const Frame frame = Frame::from_normal(exit.ns_k);
   const Vec3 local_kj = frame.to_local(omega_kj);
   Vec3 local_o;
-  if (!dielectric_sample_transmission(exit.interface, local_kj, Vec2{u[4], u[5]}, &local_o)) {
+  if (!dielectric_sample_transmission(exit.interface, local_kj,
+                                      Vec2{u[R::kOutwardNormal], u[R::kOutwardNormal + 1]},
+                                      &local_o)) {
     return failed_proposal(SneeFailure::kRefraction);
   }
   const Vec3 omega_o = normalize(frame.to_world(local_o));

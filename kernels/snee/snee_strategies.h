@@ -16,6 +16,7 @@
 #include "kernels/lights/light_table.h"
 #include "kernels/snee/snee_options.h"
 #include "kernels/snee/snee_suffix.h"
+#include "kernels/snee/strategy_randoms.h"
 
 namespace snee {
 
@@ -74,12 +75,9 @@ struct SneeProposal {
 };
 
 // epsilon: scene-scale offset of ray origins on the boundary, along -n_k for segments inside the
-// medium and +n_k for the light segment. Medium points are never offset.
+// medium and +n_k for the light segment. Medium points are never offset. u: the strategy's
+// random numbers, named in strategy_randoms.h.
 
-// Random numbers: u[0] light selection, u[1..2] point on the light, u[3..4] microfacet normal of
-// the inward transmission, u[5] distance technique, u[6] free-flight colour channel, u[7]
-// distance.
-inline constexpr int kTopToBottomDimensions = 8;
 // Whether top-to-bottom can start from light sample `light` at an exit point with outward
 // geometric and shading normals n_k and ns_k: a light that gives radiance from above the exit
 // point's horizon by both (the side rule, docs/method.md 4.9).
@@ -102,10 +100,7 @@ SneeCandidate sample_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kTopToBottomDimensions> u);
 
-// Random numbers: u[0..3] the middle vertex (u[0] direction technique, u[1..2] direction, u[3]
-// distance; joint_importance.h), u[4..5] microfacet normal of the outward transmission.
-// Only lights reached by escaping rays (environment, cone) are found this way.
-inline constexpr int kBottomToTopDimensions = 6;
+// Bottom-to-top finds only lights reached by escaping rays (environment, cone).
 SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& medium,
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,

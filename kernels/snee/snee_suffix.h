@@ -6,16 +6,14 @@
 #pragma once
 
 #include "kernels/bsdf/dielectric.h"
+#include "kernels/medium/homogeneous_medium.h"
 #include "scene/math.h"
 
 namespace snee {
 
-// Homogeneous medium inside the object.
-struct SneeMedium {
-  Rgb sigma_s{0.0f};
-  Rgb sigma_t{0.0f};
-  float g = 0;  // Henyey-Greenstein asymmetry
-};
+// The medium inside the object: SNEE's closed forms need a homogeneous one.
+using SneeMedium = HomogeneousMedium;
+static_assert(SneeMedium::kSneeEligible);
 
 struct SneeSuffix {
   Vec3 x_i;       // vertex two steps before the exit
