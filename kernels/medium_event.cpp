@@ -49,13 +49,15 @@ void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chun
 
   const Vec3Batch p{chunk.load(state.channel_p_r), chunk.load(state.channel_p_g),
                     chunk.load(state.channel_p_b)};
-  const Vec3Batch beta{chunk.load(state.throughput_r), chunk.load(state.throughput_g),
-                       chunk.load(state.throughput_b)};
   const Vec3Batch origin{chunk.load(state.origin_x), chunk.load(state.origin_y),
                          chunk.load(state.origin_z)};
   const Vec3Batch w{chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)};
   const FloatBatch t = m.sample_distance(origin, w, p, rf.u[0], rf.u[1]);
   const Vec3Batch x = origin + w * t;
+  t.store_aligned(out.t.data() + k);
+  simd::store_aligned(x, out.x.data() + k, out.y.data() + k, out.z.data() + k);
+  const Vec3Batch beta{chunk.load(state.throughput_r), chunk.load(state.throughput_g),
+                       chunk.load(state.throughput_b)};
   const FloatBatch t_hit = chunk.load(state.hit_t);
   const auto scattered = t < t_hit;
   const auto crossed = !scattered && xsimd::isfinite(t_hit);
@@ -79,8 +81,6 @@ void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chun
   chunk.store(state.channel_p_b, p_out.z);
 
   const simd::HgSampleBatch phase = simd::hg_sample(w, m.asymmetry(x), rp.u[0], rp.u[1]);
-  t.store_aligned(out.t.data() + k);
-  simd::store_aligned(x, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   phase.direction.x.store_aligned(out.wx.data() + k);
   phase.direction.y.store_aligned(out.wy.data() + k);
   phase.direction.z.store_aligned(out.wz.data() + k);

@@ -30,13 +30,23 @@ Vec3 transmission_half_vector(Vec3 a, float eta_a, Vec3 b, float eta_b) {
   return hn.z < 0.0f ? -hn : hn;
 }
 
+// Whether the microfacet normal h faces w from w's side (the lobes' chi+ condition). Tested
+// before a lobe is evaluated: the straight-line lobes compute everything, and many pairs the
+// tracer evaluates one at a time fail here.
+bool faces(Vec3 w, Vec3 h) {
+  return dot(w, h) * w.z > 0.0f;
+}
+
 LobeValue rough_value(const DielectricParams& p, Vec3 wo, Vec3 wi) {
   if (p.delta() || wo.z == 0.0f || wi.z == 0.0f) return {};
   if (wo.z * wi.z > 0.0f) {
-    return value_of(dielectric_lanes::rough_reflection(p, wo, wi, reflection_half_vector(wo, wi)));
+    const Vec3 h = reflection_half_vector(wo, wi);
+    return faces(wo, h) ? value_of(dielectric_lanes::rough_reflection(p, wo, wi, h)) : LobeValue{};
   }
   const Vec3 h = transmission_half_vector(wo, side_index(wo.z, p.eta), wi, side_index(wi.z, p.eta));
-  return h.z > 0.0f ? value_of(dielectric_lanes::rough_transmission(p, wo, wi, h)) : LobeValue{};
+  return h.z > 0.0f && faces(wo, h) && faces(wi, h)
+             ? value_of(dielectric_lanes::rough_transmission(p, wo, wi, h))
+             : LobeValue{};
 }
 
 }  // namespace

@@ -114,9 +114,11 @@ Lobe<F> rough_transmission(const DielectricT<F>& p, const lane::Vec3Of<F>& wo,
   const F wo_h = dot(wo, h), wi_h = dot(wi, h);
   const F eta_o = side_index(wo.z, p.eta), eta_i = side_index(wi.z, p.eta);
   // F is the same from both sides of the pair; from the denser side near the critical angle
-  // eta^2 - 1 + cos^2 cancels and loses most digits, so evaluate it from the rarer side.
-  const F fresnel = select(eta_o <= eta_i, fresnel_dielectric(abs(wo_h), eta_i / eta_o),
-                           fresnel_dielectric(abs(wi_h), eta_o / eta_i));
+  // eta^2 - 1 + cos^2 cancels and loses most digits, so evaluate it from the rarer side (the
+  // arguments are selected, not two results: one evaluation per lane).
+  const MaskOf<F> from_o = eta_o <= eta_i;
+  const F fresnel = fresnel_dielectric(select(from_o, abs(wo_h), abs(wi_h)),
+                                       select(from_o, eta_i / eta_o, eta_o / eta_i));
   const F denom = eta_i * wi_h + eta_o * wo_h;
   const F denom2 = denom * denom;
   const F d = ggx_d(h, p.alpha);
