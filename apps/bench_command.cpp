@@ -13,8 +13,8 @@
 #include "apps/resolution.h"
 #include "apps/stats_json.h"
 #include "apps/thread_counts.h"
-#include "kernels/path_state.h"
 #include "kernels/simd/arch.h"
+#include "kernels/wavefront/path_state.h"
 #include "scene/embree_scene.h"
 #include "scheduler/threading.h"
 

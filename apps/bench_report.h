@@ -10,7 +10,7 @@
 
 #include "apps/bench_workloads.h"
 #include "apps/measure_render.h"
-#include "scene/embree_throughput.h"
+#include "benchmarks/embree_throughput.h"
 
 namespace snee {
 

@@ -9,9 +9,9 @@
 #include <random>
 
 #include "benchmarks/bench_inputs.h"
-#include "kernels/camera.h"
-#include "kernels/rng.h"
-#include "kernels/stages.h"
+#include "kernels/physics/camera.h"
+#include "kernels/physics/rng.h"
+#include "kernels/stages/stages.h"
 
 namespace snee {
 namespace {

@@ -3,7 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "benchmarks/bench_inputs.h"
-#include "kernels/medium/free_flight.h"
+#include "kernels/physics/medium/free_flight.h"
 #include "kernels/simd/free_flight_batch.h"
 
 namespace snee {

@@ -1,12 +1,12 @@
-// Queue routing after a trace, as kernels/extend.cpp does it: every slot of one queue goes, in
-// slot order, to the medium, surface or escaped queue (a stable compaction by push). The kernels
+// Queue routing after a trace, as kernels/stages/extend.cpp does it: every slot of one queue goes,
+// in slot order, to the medium, surface or escaped queue (a stable compaction by push). The kernels
 // have no separate prefix-sum compaction, so this is the compaction that runs.
 #include <benchmark/benchmark.h>
 
 #include <random>
 
 #include "benchmarks/bench_inputs.h"
-#include "kernels/queues.h"
+#include "kernels/wavefront/queues.h"
 
 namespace snee {
 namespace {

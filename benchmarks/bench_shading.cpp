@@ -3,9 +3,9 @@
 #include <benchmark/benchmark.h>
 
 #include "benchmarks/bench_inputs.h"
-#include "kernels/bsdf/dielectric.h"
-#include "kernels/bsdf/fresnel.h"
-#include "kernels/medium/henyey_greenstein.h"
+#include "kernels/physics/bsdf/dielectric.h"
+#include "kernels/physics/bsdf/fresnel.h"
+#include "kernels/physics/medium/henyey_greenstein.h"
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/hg_sample_batch.h"
 

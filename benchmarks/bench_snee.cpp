@@ -6,7 +6,7 @@
 #include <array>
 
 #include "benchmarks/bench_inputs.h"
-#include "kernels/snee/snee_strategies.h"
+#include "kernels/physics/snee/snee_strategies.h"
 
 namespace snee {
 namespace {

@@ -10,10 +10,10 @@
 #include <vector>
 
 #include "benchmarks/bench_inputs.h"
+#include "kernels/physics/snee/snee_strategies.h"
 #include "kernels/simd/bottom_to_top_batch.h"
 #include "kernels/simd/snee_weights_batch.h"
 #include "kernels/simd/top_to_bottom_batch.h"
-#include "kernels/snee/snee_strategies.h"
 
 namespace snee {
 namespace {

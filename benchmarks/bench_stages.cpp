@@ -6,8 +6,8 @@
 
 #include <random>
 
-#include "kernels/lights/light_table.h"
-#include "kernels/stages.h"
+#include "kernels/physics/lights/light_table.h"
+#include "kernels/stages/stages.h"
 #include "scene/embree_scene.h"
 #include "scene/scene_loader.h"
 

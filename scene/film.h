@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "scene/math.h"
+#include "core/math.h"
 #include "scene/tone_map.h"
 
 namespace snee {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/math.h"
+#include "core/math.h"
 #include "scene/memory_budget.h"
 #include "scene/scene.h"
 

@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "scene/math.h"
+#include "core/math.h"
 #include "scene/scene_error.h"
 
 namespace snee {

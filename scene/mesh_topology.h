@@ -5,7 +5,7 @@
 
 #include <cstddef>
 
-#include "scene/math.h"
+#include "core/math.h"
 #include "scene/scene.h"
 
 namespace snee {

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/math.h"
+#include "core/math.h"
 
 namespace snee {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/math.h"
 #include "scene/light_selection.h"
-#include "scene/math.h"
 
 namespace snee {
 

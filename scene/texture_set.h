@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "scene/math.h"
+#include "core/math.h"
 #include "scene/scene.h"
 
 namespace snee {

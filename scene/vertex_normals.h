@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <string>
 
-#include "scene/math.h"
+#include "core/math.h"
 #include "scene/scene.h"
 
 namespace snee {

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "kernels/first_hit_aovs.h"
+#include "kernels/stages/first_hit_aovs.h"
 #include "scheduler/noise_target.h"
 
 namespace snee {

@@ -13,8 +13,8 @@
 #include <mutex>
 #include <vector>
 
+#include "core/math.h"
 #include "scene/film.h"
-#include "scene/math.h"
 #include "scheduler/film_state.h"
 #include "scheduler/unit_grid.h"
 
@@ -30,9 +30,9 @@ class FilmAccumulator {
 
   // Where unit k writes its samples: (sample - sample_begin) * pixel_count + local_pixel.
   Rgb* buffer(size_t unit);
-  // Keeps the denoiser AOVs too (kernels/first_hit_aovs.h): their sums follow the radiance's,
-  // sample order included, and resolve() fills Film::albedo, normal and depth. Call it before
-  // any unit is added.
+  // Keeps the denoiser AOVs too (kernels/stages/first_hit_aovs.h): their sums follow the
+  // radiance's, sample order included, and resolve() fills Film::albedo, normal and depth. Call it
+  // before any unit is added.
   void keep_aovs();
   // Where unit k writes its samples' AOVs, kAovFloats per sample in the order of buffer();
   // null unless keep_aovs() was called.

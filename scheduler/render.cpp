@@ -11,10 +11,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "kernels/first_hit_aovs.h"
-#include "kernels/lights/light_table.h"
+#include "kernels/physics/lights/light_table.h"
+#include "kernels/physics/snee/light_extent.h"
 #include "kernels/simd/arch.h"
-#include "kernels/snee/light_extent.h"
+#include "kernels/stages/first_hit_aovs.h"
 #include "scene/embree_scene.h"
 #include "scheduler/schedule.h"
 #include "scheduler/threading.h"

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "kernels/kernel_context.h"
-#include "kernels/snee/snee_options.h"
-#include "kernels/snee_counters.h"
-#include "kernels/stage_table.h"
+#include "kernels/physics/snee/snee_options.h"
+#include "kernels/stages/stage_table.h"
+#include "kernels/wavefront/kernel_context.h"
+#include "kernels/wavefront/snee_counters.h"
 #include "scene/aov_selection.h"
 #include "scene/film.h"
 #include "scene/memory_budget.h"

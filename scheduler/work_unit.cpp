@@ -4,7 +4,7 @@
 #include <chrono>
 #include <type_traits>
 
-#include "kernels/first_hit_aovs.h"
+#include "kernels/stages/first_hit_aovs.h"
 
 namespace snee {
 

@@ -9,10 +9,10 @@
 #include <functional>
 #include <vector>
 
-#include "kernels/kernel_context.h"
-#include "kernels/path_state.h"
-#include "kernels/stage_table.h"
-#include "kernels/stages.h"
+#include "kernels/stages/stage_table.h"
+#include "kernels/stages/stages.h"
+#include "kernels/wavefront/kernel_context.h"
+#include "kernels/wavefront/path_state.h"
 #include "scheduler/render.h"
 
 namespace snee {

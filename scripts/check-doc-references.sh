@@ -4,7 +4,7 @@
 # dangling pointer. Three kinds of reference are checked, in every text file git tracks (or would
 # track: untracked files that are not ignored); in C++ files only comments count (a string
 # literal may name a missing file on purpose, e.g. in an error-message test):
-#   * a path that starts with a top-level directory of the repository (docs/, tests/, kernels/,
+#   * a path that starts with a top-level directory of the repository (docs/, tests/, core/, kernels/,
 #     scene/, scheduler/, apps/, scripts/, benchmarks/, cmake/, data/) and names a file (has an
 #     extension; {a,b} alternatives are expanded) or a directory (ends with /). Paths inside
 #     other paths (build/apps/..., ../shared/data/...) and patterns (*, $VAR, <name>) are not
@@ -23,7 +23,7 @@ import subprocess
 import sys
 
 root = sys.argv[1]
-TOP = r"(?:docs|tests|kernels|scene|scheduler|apps|scripts|benchmarks|cmake|data)"
+TOP = r"(?:docs|tests|core|kernels|scene|scheduler|apps|scripts|benchmarks|cmake|data)"
 TEXT_SUFFIXES = {".cpp", ".h", ".hpp", ".c", ".md", ".txt", ".cmake", ".sh", ".py", ".json",
                  ".yml", ".yaml", ".in", ""}
 CODE_SUFFIXES = {".cpp", ".h", ".hpp", ".c"}  # only their comments are checked

@@ -8,7 +8,7 @@ if [[ "${1:-}" == "--fix" ]]; then
   mode=(-i)
 fi
 dirs=()
-for dir in apps scene kernels scheduler tests benchmarks; do
+for dir in apps core scene kernels scheduler tests benchmarks; do
   [[ -d "$dir" ]] && dirs+=("$dir")
 done
 find "${dirs[@]}" -type f \( -name '*.cpp' -o -name '*.h' \) -print0 | sort -z |

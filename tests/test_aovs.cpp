@@ -1,4 +1,4 @@
-// The denoiser AOVs (kernels/first_hit_aovs.h) on scenes where each is known analytically: a
+// The denoiser AOVs (kernels/stages/first_hit_aovs.h) on scenes where each is known analytically: a
 // diffuse plane facing the camera (albedo and normal exact in every pixel, depth between the
 // extremes of its pixel's footprint and, over the image, the footprint integral), a diffuse
 // sphere's normal field, a smooth dielectric sphere over a diffuse floor (the albedo through the
@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "kernels/bsdf/fresnel.h"
+#include "kernels/physics/bsdf/fresnel.h"
 #include "scene/aov_selection.h"
 #include "scheduler/render.h"
 #include "tests/support/render_helpers.h"

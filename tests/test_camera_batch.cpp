@@ -12,11 +12,11 @@
 #include <random>
 #include <vector>
 
-#include "kernels/camera.h"
-#include "kernels/rng.h"
+#include "kernels/physics/camera.h"
+#include "kernels/physics/rng.h"
 #include "kernels/simd/divide.h"
 #include "kernels/simd/slot_chunk.h"
-#include "kernels/stages.h"
+#include "kernels/stages/stages.h"
 #include "tests/support/render_helpers.h"
 
 namespace snee {

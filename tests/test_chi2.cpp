@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "kernels/medium/henyey_greenstein.h"
+#include "kernels/physics/medium/henyey_greenstein.h"
 #include "tests/support/chi2.h"
 
 namespace snee {

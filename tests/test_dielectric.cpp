@@ -8,9 +8,9 @@
 #include <cmath>
 #include <vector>
 
-#include "kernels/bsdf/dielectric.h"
-#include "kernels/bsdf/fresnel.h"
-#include "kernels/bsdf/ggx.h"
+#include "kernels/physics/bsdf/dielectric.h"
+#include "kernels/physics/bsdf/fresnel.h"
+#include "kernels/physics/bsdf/ggx.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 

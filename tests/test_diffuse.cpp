@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "kernels/bsdf/diffuse.h"
+#include "kernels/physics/bsdf/diffuse.h"
 #include "tests/support/chi2.h"
 
 namespace snee {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "kernels/bsdf/diffuse_transmission.h"
+#include "kernels/physics/bsdf/diffuse_transmission.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 

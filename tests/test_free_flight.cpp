@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "kernels/medium/free_flight.h"
+#include "kernels/physics/medium/free_flight.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 

@@ -1,5 +1,5 @@
-// The batched free-flight functions against the scalar ones (medium/free_flight.h). xsimd's exp
-// and log1p are not libm's, so agreement is to a few ulp; the bounds here are the ones
+// The batched free-flight functions against the scalar ones (kernels/physics/medium/free_flight.h).
+// xsimd's exp and log1p are not libm's, so agreement is to a few ulp; the bounds here are the ones
 // kernels/simd/README.md states (the largest distances seen over 8M lanes). xsimd's exp also
 // flushes results below FLT_MIN to zero where libm returns subnormals (the renderer runs with
 // FTZ/DAZ anyway), which moves a value by at most sigma * FLT_MIN: differences that small pass.
@@ -8,7 +8,7 @@
 #include <cfloat>
 #include <random>
 
-#include "kernels/medium/free_flight.h"
+#include "kernels/physics/medium/free_flight.h"
 #include "kernels/simd/frame_batch.h"
 #include "kernels/simd/free_flight_batch.h"
 #include "tests/support/lanes.h"

@@ -5,7 +5,7 @@
 #include <cfloat>
 #include <cmath>
 
-#include "kernels/bsdf/ggx.h"
+#include "kernels/physics/bsdf/ggx.h"
 #include "tests/support/chi2.h"
 
 namespace snee {

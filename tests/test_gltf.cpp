@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "kernels/bsdf/fresnel.h"
+#include "kernels/physics/bsdf/fresnel.h"
 #include "scene/gltf_reader.h"
 #include "scene/scene_loader.h"
 #include "tests/support/scene_error_of.h"

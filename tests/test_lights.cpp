@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "kernels/lights/light_table.h"
+#include "kernels/physics/lights/light_table.h"
 #include "tests/support/chi2.h"
 #include "tests/support/form_factor.h"
 #include "tests/support/statistics.h"

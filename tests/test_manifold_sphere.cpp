@@ -7,10 +7,10 @@
 
 #include <cmath>
 
-#include "kernels/bsdf/fresnel.h"
-#include "kernels/sampling.h"
-#include "kernels/snee/manifold_sphere.h"
-#include "kernels/snee/snee_pdfs.h"
+#include "kernels/physics/bsdf/fresnel.h"
+#include "kernels/physics/sampling.h"
+#include "kernels/physics/snee/manifold_sphere.h"
+#include "kernels/physics/snee/snee_pdfs.h"
 #include "tests/support/chi2.h"
 #include "tests/support/manifold_sphere_setup.h"
 #include "tests/support/statistics.h"

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "kernels/bsdf/conductor.h"
+#include "kernels/physics/bsdf/conductor.h"
 #include "scene/metals.h"
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"

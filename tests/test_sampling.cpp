@@ -9,8 +9,8 @@
 #include <optional>
 #include <vector>
 
-#include "kernels/alias_table.h"
-#include "kernels/sampling.h"
+#include "kernels/physics/alias_table.h"
+#include "kernels/physics/sampling.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 

@@ -9,10 +9,10 @@
 #include <limits>
 #include <random>
 
-#include "kernels/bsdf/dielectric.h"
-#include "kernels/bsdf/fresnel.h"
-#include "kernels/medium/henyey_greenstein.h"
-#include "kernels/sampling.h"
+#include "kernels/physics/bsdf/dielectric.h"
+#include "kernels/physics/bsdf/fresnel.h"
+#include "kernels/physics/medium/henyey_greenstein.h"
+#include "kernels/physics/sampling.h"
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/frame_batch.h"
 #include "kernels/simd/hg_sample_batch.h"

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "kernels/shading_normal.h"
+#include "kernels/stages/shading_normal.h"
 #include "scene/vertex_normals.h"
 #include "scheduler/render.h"
 #include "tests/support/chi2.h"

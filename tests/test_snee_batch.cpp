@@ -11,11 +11,11 @@
 #include <cstring>
 #include <vector>
 
-#include "kernels/lights/light_table.h"
+#include "kernels/physics/lights/light_table.h"
+#include "kernels/physics/snee/snee_strategies.h"
 #include "kernels/simd/bottom_to_top_batch.h"
 #include "kernels/simd/snee_weights_batch.h"
 #include "kernels/simd/top_to_bottom_batch.h"
-#include "kernels/snee/snee_strategies.h"
 #include "tests/support/chi2.h"
 #include "tests/support/snee_setups.h"
 

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "kernels/snee/light_extent.h"
+#include "kernels/physics/snee/light_extent.h"
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
 #include "tests/support/render_helpers.h"

@@ -12,13 +12,13 @@
 #include <cmath>
 #include <string>
 
-#include "kernels/bsdf/dielectric.h"
-#include "kernels/bsdf/fresnel.h"
-#include "kernels/lights/light_table.h"
-#include "kernels/medium/free_flight.h"
-#include "kernels/medium/henyey_greenstein.h"
-#include "kernels/snee/probe.h"
-#include "kernels/snee/snee_strategies.h"
+#include "kernels/physics/bsdf/dielectric.h"
+#include "kernels/physics/bsdf/fresnel.h"
+#include "kernels/physics/lights/light_table.h"
+#include "kernels/physics/medium/free_flight.h"
+#include "kernels/physics/medium/henyey_greenstein.h"
+#include "kernels/physics/snee/probe.h"
+#include "kernels/physics/snee/snee_strategies.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
 

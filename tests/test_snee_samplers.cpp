@@ -9,14 +9,14 @@
 #include <array>
 #include <cmath>
 
-#include "kernels/bsdf/fresnel.h"
-#include "kernels/lights/light_table.h"
-#include "kernels/medium/free_flight.h"
-#include "kernels/snee/distance_samplers.h"
-#include "kernels/snee/joint_importance.h"
-#include "kernels/snee/probe.h"
-#include "kernels/snee/snee_pdfs.h"
-#include "kernels/snee/snee_strategies.h"
+#include "kernels/physics/bsdf/fresnel.h"
+#include "kernels/physics/lights/light_table.h"
+#include "kernels/physics/medium/free_flight.h"
+#include "kernels/physics/snee/distance_samplers.h"
+#include "kernels/physics/snee/joint_importance.h"
+#include "kernels/physics/snee/probe.h"
+#include "kernels/physics/snee/snee_pdfs.h"
+#include "kernels/physics/snee/snee_strategies.h"
 #include "tests/support/chi2.h"
 #include "tests/support/snee_setups.h"
 #include "tests/support/statistics.h"

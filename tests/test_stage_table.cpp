@@ -1,11 +1,11 @@
-// The stage table (kernels/stage_table.h) drives the loop and the scheduler's dispatch: every
-// stage runs once per turn, in table order, and only when its input holds something.
+// The stage table (kernels/stages/stage_table.h) drives the loop and the scheduler's dispatch:
+// every stage runs once per turn, in table order, and only when its input holds something.
 #include <gtest/gtest.h>
 
 #include <set>
 #include <string>
 
-#include "kernels/stage_table.h"
+#include "kernels/stages/stage_table.h"
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
 

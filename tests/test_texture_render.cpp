@@ -180,8 +180,9 @@ TEST_F(TextureRender, RoughnessTextureGivesEachQuadrantItsOwnRoughness) {
   }
 }
 
-// SNEE leaves a boundary with a roughness texture to the path tracer (kernels/snee_probe.cpp):
-// a medium behind one renders with `snee` as with `pt`, within their standard errors.
+// SNEE leaves a boundary with a roughness texture to the path tracer
+// (kernels/stages/snee_probe.cpp): a medium behind one renders with `snee` as with `pt`, within
+// their standard errors.
 TEST_F(TextureRender, SneeAgreesWithPtBehindATexturedRoughBoundary) {
   const json doc = {
       {"camera",

@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "kernels/camera.h"
-#include "kernels/sampling.h"
+#include "kernels/physics/camera.h"
+#include "kernels/physics/sampling.h"
 #include "scene/camera_frame.h"
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"

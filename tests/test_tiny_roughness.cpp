@@ -1,4 +1,4 @@
-// Dielectric roughness at the edge of float precision (kSmoothRoughness, kernels/bsdf/
+// Dielectric roughness at the edge of float precision (kSmoothRoughness, kernels/physics/bsdf/
 // dielectric.h): below the threshold the interface is smooth; just above it the rough lobe is
 // still resolved. Either way pt and snee agree with the smooth render. Before the threshold,
 // 1e-9 rendered the sphere black and snee at 1e-8 was several times too bright.
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "kernels/bsdf/dielectric.h"
+#include "kernels/physics/bsdf/dielectric.h"
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
 #include "tests/support/render_helpers.h"

@@ -1,13 +1,13 @@
-// The straight-line part of propose_bottom_to_top (snee/snee_strategies.cpp) for a batch of
-// exits: joint-importance placement of x_j, the check that it lies on the medium side of x_k,
-// the outward transmission sample and the sampling density, without the light. What is left
+// The straight-line part of propose_bottom_to_top (kernels/physics/snee/snee_strategies.cpp) for a
+// batch of exits: joint-importance placement of x_j, the check that it lies on the medium side of
+// x_k, the outward transmission sample and the sampling density, without the light. What is left
 // per exit (is there a light along omega_o, and its pdf) branches on the light table and stays
-// scalar: snee/snee_strategies.h, bottom_to_top_proposal.
+// scalar: kernels/physics/snee/snee_strategies.h, bottom_to_top_proposal.
 #pragma once
 
+#include "kernels/physics/snee/strategy_randoms.h"
 #include "kernels/simd/joint_importance_batch.h"
 #include "kernels/simd/snee_pdfs_batch.h"
-#include "kernels/snee/strategy_randoms.h"
 
 namespace snee::simd {
 

@@ -1,4 +1,4 @@
-// The frame of scene/math.h (FrameT) for a batch of lanes: the same template, so the same
+// The frame of core/math.h (FrameT) for a batch of lanes: the same template, so the same
 // operations in the same order, bit for bit.
 #pragma once
 

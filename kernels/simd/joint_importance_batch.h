@@ -1,7 +1,7 @@
-// joint_importance_sample (snee/joint_importance.cpp) for a batch of lanes, in float. The
-// scalar sampler works in double because it forms pi - gamma and pi/2 - theta by cancellation
-// and takes tan(theta) next to its pole; this one never forms them: the geometric lobe's
-// pi - gamma = pi sqrt(1 - u) comes straight from the inverse CDF, the phase lobe's from
+// joint_importance_sample (kernels/physics/snee/joint_importance.cpp) for a batch of lanes, in
+// float. The scalar sampler works in double because it forms pi - gamma and pi/2 - theta by
+// cancellation and takes tan(theta) next to its pole; this one never forms them: the geometric
+// lobe's pi - gamma = pi sqrt(1 - u) comes straight from the inverse CDF, the phase lobe's from
 // atan2(sin gamma, -cos gamma), and the equiangular step uses psi = pi/2 - theta =
 // (1 - u3)(pi - gamma) with tan(theta) = cot(psi). The density uses the same variables:
 // r_jk = h / sin(psi). Agreement with the scalar sampler is measured in

@@ -1,4 +1,4 @@
-// The batch as a lane type (scene/lane_math.h): its 3-vector is Vec3Batch, negation flips the
+// The batch as a lane type (core/lane_math.h): its 3-vector is Vec3Batch, negation flips the
 // sign bit, and sine and cosine are lanewise_sincos, so every template written once over the
 // lane type runs on FloatBatch with the operations below.
 #pragma once
@@ -6,8 +6,8 @@
 #include <cmath>
 #include <utility>
 
+#include "core/math.h"
 #include "kernels/simd/arch.h"
-#include "scene/math.h"
 
 namespace snee::simd {
 

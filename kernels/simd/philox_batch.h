@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "kernels/rng.h"
+#include "kernels/physics/rng.h"
 #include "kernels/simd/mul_hilo.h"
 
 namespace snee::simd {

@@ -1,11 +1,12 @@
-// Densities that SNEE's batched sampler and its batched weighing share (snee/probe.cpp and
-// bsdf/dielectric.cpp's transmission pdf), so both compute them one way.
+// Densities that SNEE's batched sampler and its batched weighing share
+// (kernels/physics/snee/probe.cpp and kernels/physics/bsdf/dielectric.cpp's transmission pdf), so
+// both compute them one way.
 #pragma once
 
-#include "kernels/medium/henyey_greenstein.h"
+#include "kernels/physics/medium/henyey_greenstein.h"
+#include "kernels/physics/snee/snee_options.h"
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/sampling_batch.h"
-#include "kernels/snee/snee_options.h"
 
 namespace snee::simd {
 
@@ -53,9 +54,9 @@ inline TransmissionPair transmission_pair(const DielectricLanes& p, const Vec3Ba
           xsimd::select(ok, d_h * xsimd::abs(o_h), zero)};
 }
 
-// The ray o + t w seen from c (snee/distance_samplers.cpp): closest approach at t = delta, at
-// distance h, and the range of angles at c that t in [0, inf) sweeps, atan2(h, -delta) (the
-// scalar's pi/2 - theta_a, without the cancellation).
+// The ray o + t w seen from c (kernels/physics/snee/distance_samplers.cpp): closest approach at t =
+// delta, at distance h, and the range of angles at c that t in [0, inf) sweeps, atan2(h, -delta)
+// (the scalar's pi/2 - theta_a, without the cancellation).
 struct EquiangularBatch {
   FloatBatch delta, h, range;
   EquiangularBatch(const Vec3Batch& o, const Vec3Batch& w, const Vec3Batch& c) {

@@ -1,7 +1,8 @@
-// The weighing half of a SNEE subdivision sample (finish_proposal in snee/snee_strategies.cpp)
-// for a batch of proposals: the suffix's geometry, the densities of the four strategies that
-// can produce it (snee/snee_pdfs.cpp), their multi-sample MIS weight and the suffix integrand
-// (snee/snee_integrand.cpp), each lane with its own medium, interface and light.
+// The weighing half of a SNEE subdivision sample (finish_proposal in
+// kernels/physics/snee/snee_strategies.cpp) for a batch of proposals: the suffix's geometry, the
+// densities of the four strategies that can produce it (kernels/physics/snee/snee_pdfs.cpp), their
+// multi-sample MIS weight and the suffix integrand (kernels/physics/snee/snee_integrand.cpp), each
+// lane with its own medium, interface and light.
 //
 // Every suffix a subdivision strategy proposes is one SNEE can produce (x_i and x_j are medium
 // vertices and x_k is the probe's first hit), so only that case is here. The scalar functions
@@ -19,15 +20,16 @@
 #include <cmath>
 #include <numbers>
 
-#include "kernels/medium/henyey_greenstein.h"
+#include "kernels/physics/medium/henyey_greenstein.h"
+#include "kernels/physics/snee/snee_strategies.h"
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/free_flight_batch.h"
 #include "kernels/simd/snee_pdfs_batch.h"
-#include "kernels/snee/snee_strategies.h"
 
 namespace snee::simd {
 
-// A batch of suffixes x_i -> x_j -> x_k -> light (snee/snee_suffix.h), all producible by SNEE.
+// A batch of suffixes x_i -> x_j -> x_k -> light (kernels/physics/snee/snee_suffix.h), all
+// producible by SNEE.
 struct SuffixBatch {
   Vec3Batch x_i, omega_in, x_j, x_k, n_k, ns_k, omega_o;
   Vec3Batch sigma_s, sigma_t;
@@ -147,8 +149,9 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   return out;
 }
 
-// mis_weight (snee/snee_pdfs.cpp) over the enabled strategies, from densities scaled by the
-// largest one; the sum over the strategies is formed once for every strategy's weight.
+// mis_weight (kernels/physics/snee/snee_pdfs.cpp) over the enabled strategies, from densities
+// scaled by the largest one; the sum over the strategies is formed once for every strategy's
+// weight.
 class MisWeights {
  public:
   MisWeights(const SuffixWeighing& w, const SneeOptions& options) : w_(w), options_(options) {

@@ -1,6 +1,6 @@
-// The straight-line part of propose_top_to_bottom (snee/snee_strategies.cpp) for a batch of
-// exits whose light samples are already taken (the light table branches on the kind of light,
-// so that stays per exit): the inward transmission sample, the distance along the refracted
+// The straight-line part of propose_top_to_bottom (kernels/physics/snee/snee_strategies.cpp) for a
+// batch of exits whose light samples are already taken (the light table branches on the kind of
+// light, so that stays per exit): the inward transmission sample, the distance along the refracted
 // ray (free flight or equiangular toward x_i), the middle vertex and the sampling density. The
 // equiangular distance is drawn as t = delta + h cot(psi) (snee_pdfs_batch.h), in float; the
 // scalar sampler takes tan next to its pole in double. Agreement with the scalar sampler is
@@ -10,9 +10,9 @@
 #include <array>
 #include <limits>
 
+#include "kernels/physics/snee/strategy_randoms.h"
 #include "kernels/simd/free_flight_batch.h"
 #include "kernels/simd/snee_pdfs_batch.h"
-#include "kernels/snee/strategy_randoms.h"
 
 namespace snee::simd {
 

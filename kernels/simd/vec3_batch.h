@@ -1,4 +1,4 @@
-// Componentwise arithmetic on Vec3Batch (scene/math.h's Vec3 operators, one batch per
+// Componentwise arithmetic on Vec3Batch (core/math.h's Vec3 operators, one batch per
 // component), the cross product and lane selection: the named forms for the batched kernels,
 // the operators for the templates written once over the lane type (the same operations).
 #pragma once

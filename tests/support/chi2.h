@@ -27,11 +27,11 @@
 #include <random>
 #include <string>
 
-#include "kernels/sampling.h"
+#include "kernels/physics/sampling.h"
 
 namespace snee::test {
 
-// Seeded uniform numbers in [0, 1) with 24 bits, like the renderer's (kernels/rng.h);
+// Seeded uniform numbers in [0, 1) with 24 bits, like the renderer's (kernels/physics/rng.h);
 // std::uniform_real_distribution<float> may round up to 1.
 class TestRng {
  public:

@@ -3,7 +3,7 @@
 // brings the names in with `using namespace test::manifold_sphere;`.
 #pragma once
 
-#include "scene/math.h"
+#include "core/math.h"
 #include "tests/support/chi2.h"
 
 namespace snee::test::manifold_sphere {

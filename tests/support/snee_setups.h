@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 
-#include "kernels/snee/snee_strategies.h"
+#include "kernels/physics/snee/snee_strategies.h"
 #include "scene/scene.h"
 #include "tests/support/chi2.h"
 

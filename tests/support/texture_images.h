@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "scene/math.h"
+#include "core/math.h"
 #include "tests/support/test_directory.h"
 
 namespace snee::test {

@@ -1,0 +1,97 @@
+// The path suffix SNEE estimates at a medium vertex x_i (docs/method.md 1.2):
+//   x_i (medium) -> x_j (medium) -> x_k (exit point on the dielectric boundary) -> light along
+//   omega_o,
+// described once so that every strategy's pdf, the integrand and the MIS weights are computed
+// from the same data, wherever they are needed (subdivision stage or the tracer's exit events).
+#pragma once
+
+#include "core/math.h"
+#include "kernels/physics/bsdf/dielectric.h"
+#include "kernels/physics/medium/homogeneous_medium.h"
+
+namespace snee {
+
+// The medium inside the object: SNEE's closed forms need a homogeneous one.
+using SneeMedium = HomogeneousMedium;
+static_assert(SneeMedium::kSneeEligible);
+
+struct SneeSuffix {
+  Vec3 x_i;       // vertex two steps before the exit
+  Vec3 omega_in;  // unit propagation direction arriving at x_i
+  Vec3 x_j;       // vertex one step before the exit
+  Vec3 x_k;       // exit point on the boundary
+  Vec3 n_k;       // outward geometric normal at x_k
+  Vec3 ns_k;      // outward shading normal at x_k (n_k on flat surfaces; docs/method.md 4.9)
+  Vec3 omega_o;   // unit direction from x_k toward the light (outside)
+  SneeMedium medium;
+  DielectricParams interface;
+  // Solid-angle density with which the light sampler produces omega_o, including the light
+  // selection probability; for a delta light, the selection probability alone.
+  float light_pdf = 0;
+  bool light_delta = false;
+  // Whether the light is at infinity (directional, cone, environment). Bottom-to-top finds only
+  // those (its outward direction is looked up, not traced), so it cannot produce the others.
+  bool light_distant = true;
+  // Whether the first surface hit of the ray from x_i toward x_k is x_k. Probe-based
+  // strategies can only produce suffixes where it holds.
+  bool v_first = false;
+  // Whether x_i and x_j are medium scattering vertices (not surface vertices).
+  bool x_i_medium = false;
+  bool x_j_medium = false;
+  // Whether the manifold strategy (docs/method.md 3.10) runs at x_j for this suffix: a smooth
+  // sphere boundary, a directional light, and x_j within the walk's depth limit. It finds every
+  // exit point, so then it can produce the suffix whenever x_j is a medium vertex.
+  bool manifold = false;
+  // How fast the outward normal turns per unit length along the boundary at x_k (1 / radius).
+  float boundary_curvature = 0;
+};
+
+// The deltas of a smooth interface and of a directional light remove dimensions from the path
+// space, so each combination has its own measure and its own set of strategies that can produce
+// a path in it (docs/method.md 3.7, cases A-D). "Smooth" means DielectricParams::delta(): an
+// index-matched interface refracts straight through whatever its roughness.
+enum class SuffixMeasure {
+  kFull,            // A: rough interface, non-delta light: dV(x_j) dA(x_k) dsigma(omega_o)
+  kDeltaLight,      // B: rough interface, delta light: dV(x_j) dA(x_k)
+  kDeltaInterface,  // C: smooth interface, non-delta light: dV(x_j) dA(x_k)
+  kDeltaBoth,       // D: smooth interface, delta light: dA(x_k) dt along the refracted ray
+};
+
+inline SuffixMeasure suffix_measure(const SneeSuffix& s) {
+  if (s.interface.delta()) {
+    return s.light_delta ? SuffixMeasure::kDeltaBoth : SuffixMeasure::kDeltaInterface;
+  }
+  return s.light_delta ? SuffixMeasure::kDeltaLight : SuffixMeasure::kFull;
+}
+
+// Whether the probe-based strategies (TB, BT) can produce the suffix at all.
+inline bool snee_can_produce(const SneeSuffix& s) {
+  return s.x_i_medium && s.x_j_medium && s.v_first;
+}
+
+// Distances, directions and cosines of a suffix, derived once (double precision: the pdfs of
+// nearly coincident vertices are products of large inverse squares).
+struct SuffixGeometry {
+  double d = 0;     // |x_k - x_i|, the length of the probed edge
+  double r_ij = 0;  // |x_j - x_i|
+  double r_jk = 0;  // |x_k - x_j|
+  Vec3 omega_ik;    // unit, x_i -> x_k
+  Vec3 omega_ij;    // unit, x_i -> x_j
+  Vec3 omega_jk;    // unit, x_j -> x_k
+  // The geometric normal n_k converts between area at x_k and solid angle; the shading normal
+  // ns_k is the interface's frame: the BTDF, its cosine, Fresnel and refraction.
+  double cos_k_i = 0;          // n_k . omega_ik (> 0 when x_i is on the inner side of x_k)
+  double cos_k_j = 0;          // n_k . omega_jk (> 0 when x_j is on the inner side of x_k)
+  double cos_k_j_shading = 0;  // ns_k . omega_jk
+  double cos_o = 0;            // ns_k . omega_o
+  Vec3 local_kj;  // omega_kj = -omega_jk in the shading frame at x_k (outward normal = +z)
+  Vec3 local_o;   // omega_o in the same frame
+  // The side rule at x_k: x_j lies inside and omega_o outside by both normals, so the path
+  // crosses the boundary as its BTDF in the shading frame says (zero contribution otherwise).
+  bool crosses = false;
+  // False for coincident vertices, where no density is defined.
+  bool valid = false;
+};
+SuffixGeometry suffix_geometry(const SneeSuffix& s);
+
+}  // namespace snee

@@ -1,0 +1,290 @@
+#include "kernels/stages/exit_event.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/physics/bsdf/fresnel.h"
+#include "kernels/physics/medium/free_flight.h"
+#include "kernels/physics/medium/henyey_greenstein.h"
+#include "kernels/physics/snee/manifold_sphere.h"
+#include "kernels/physics/snee/snee_strategies.h"
+#include "kernels/wavefront/path_ops.h"
+
+namespace snee {
+
+namespace {
+
+// The suffix of an exit at x_k on surface geom, whose interface there is `interface` (its
+// roughness texture applied) and whose normals are n_k (geometric) and ns_k (shading).
+SneeSuffix exit_suffix(const KernelContext& ctx, Vec3 x_i, Vec3 omega_in, Vec3 x_j, Vec3 x_k,
+                       Vec3 n_k, Vec3 ns_k, const DielectricParams& interface, uint32_t geom,
+                       Vec3 omega_o, float light_pdf, bool delta, bool distant) {
+  const SurfaceInfo& surface = ctx.surfaces[geom];
+  const MediumInfo& m = ctx.media[static_cast<size_t>(surface.interior_medium)];
+  SneeSuffix s;
+  s.x_i = x_i;
+  s.omega_in = omega_in;
+  s.x_j = x_j;
+  s.x_k = x_k;
+  s.n_k = n_k;
+  s.ns_k = ns_k;
+  s.omega_o = omega_o;
+  s.medium = m.medium;
+  s.interface = interface;
+  s.light_pdf = light_pdf;
+  s.light_delta = delta;
+  s.light_distant = distant;
+  s.x_i_medium = true;
+  s.x_j_medium = true;
+  return s;
+}
+
+// A visibility segment from `from` to `stop_short` before `to`. A medium vertex can lie on the
+// point it connects to (within the clearance of the boundary): nothing lies between them, and
+// the empty segment still needs a unit direction, as Embree aborts on a NaN ray.
+uint32_t add_visibility_segment(ShadowQueue& shadow, Vec3 from, Vec3 to, float stop_short) {
+  const Vec3 d = to - from;
+  const float distance = length(d);
+  if (!(distance > 0)) return shadow.add_segment(from, Vec3(0, 0, 1), 0.0f, kVisibilityOnly);
+  return shadow.add_segment(from, d / distance, std::max(0.0f, distance - stop_short),
+                            kVisibilityOnly);
+}
+
+// Queues `unweighted` times the four-way weight of strategy st, chosen by V_first(x_i, x_k),
+// gated by the segments [first, first + count).
+void queue_weighted(const KernelContext& ctx, Strategy st, const SneeSuffix& s, uint32_t slot,
+                    Rgb unweighted, uint32_t first, uint32_t count, ShadowQueue& shadow,
+                    ConnectionKind kind = ConnectionKind::kLight) {
+  const ExitWeights w = snee_exit_weights(st, s, ctx.snee);
+  const float w_first = static_cast<float>(w.if_first_hit);
+  const float w_not_first = static_cast<float>(w.if_not_first_hit);
+  // V_first as a segment from x_i toward x_k that stops just short of it.
+  const uint32_t selector = add_visibility_segment(shadow, s.x_i, s.x_k, ctx.epsilon);
+  shadow.add_connection({kind, slot, first, count, static_cast<int32_t>(selector),
+                         unweighted * w_first, unweighted * w_not_first});
+}
+
+}  // namespace
+
+ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
+                          Vec3 n, Vec3 ns, const SurfaceInfo& info, uint32_t geom) {
+  ExitEvent e;
+  const Vec3 d = state.direction(slot);
+  const bool leaving_medium = dot(d, n) > 0 && state.medium[slot] >= 0 &&
+                              info.kind == MaterialKind::kDielectric &&
+                              info.interior_medium == state.medium[slot];
+  const uint32_t flags = state.flags[slot];
+  const bool after_medium_vertex = (flags & kPathMediumVertexJ) != 0;
+  if (ctx.integrator == Integrator::kStraightLine) {
+    e.light_handled_elsewhere = leaving_medium && after_medium_vertex;
+    return e;
+  }
+  if (ctx.integrator != Integrator::kSnee || !leaving_medium || !after_medium_vertex ||
+      (flags & kPathMediumVertexI) == 0) {
+    return e;
+  }
+  e.snee_possible = true;
+  e.x_i = state.vertex_i(slot);
+  e.omega_in = state.direction_in_i(slot);
+  e.x_j = state.vertex_j(slot);
+  e.x_k = p;
+  e.n_k = n;
+  e.ns_k = ns;
+  e.interface = info.dielectric;
+  e.geom = geom;
+  return e;
+}
+
+void connect_exit_light_sample(const KernelContext& ctx, uint32_t slot, const ExitEvent& exit,
+                               Vec3 omega_o, float light_pdf, bool delta, bool distant,
+                               Rgb unweighted, uint32_t segment, ShadowQueue& shadow) {
+  const SneeSuffix s =
+      exit_suffix(ctx, exit.x_i, exit.omega_in, exit.x_j, exit.x_k, exit.n_k, exit.ns_k,
+                  exit.interface, exit.geom, omega_o, light_pdf, delta, distant);
+  queue_weighted(ctx, Strategy::kUnidirectionalLight, s, slot, unweighted, segment, 1, shadow);
+}
+
+void remember_exit(PathState& state, uint32_t slot, const ExitEvent& exit) {
+  state.flags[slot] |= kPathAfterSneeExit;
+  state.exit_geom[slot] = exit.geom;
+  state.exit_xi_x[slot] = exit.x_i.x;
+  state.exit_xi_y[slot] = exit.x_i.y;
+  state.exit_xi_z[slot] = exit.x_i.z;
+  state.exit_win_x[slot] = exit.omega_in.x;
+  state.exit_win_y[slot] = exit.omega_in.y;
+  state.exit_win_z[slot] = exit.omega_in.z;
+  state.exit_nk_x[slot] = exit.n_k.x;
+  state.exit_nk_y[slot] = exit.n_k.y;
+  state.exit_nk_z[slot] = exit.n_k.z;
+  state.exit_nsk_x[slot] = exit.ns_k.x;
+  state.exit_nsk_y[slot] = exit.ns_k.y;
+  state.exit_nsk_z[slot] = exit.ns_k.z;
+  state.exit_alpha[slot] = exit.interface.alpha;
+}
+
+void connect_exit_emission(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                           Vec3 omega_o, Rgb le, float light_pdf, bool distant,
+                           ShadowQueue& shadow) {
+  if (is_black(le)) return;
+  // The exit pushed x_k, so the path's memory now holds x_j (as its x_i) and x_k (as its x_j);
+  // null crossings since then push nothing.
+  const uint32_t geom = state.exit_geom[slot];
+  const SneeSuffix s =
+      exit_suffix(ctx, {state.exit_xi_x[slot], state.exit_xi_y[slot], state.exit_xi_z[slot]},
+                  {state.exit_win_x[slot], state.exit_win_y[slot], state.exit_win_z[slot]},
+                  state.vertex_i(slot), state.vertex_j(slot),
+                  {state.exit_nk_x[slot], state.exit_nk_y[slot], state.exit_nk_z[slot]},
+                  {state.exit_nsk_x[slot], state.exit_nsk_y[slot], state.exit_nsk_z[slot]},
+                  {ctx.surfaces[geom].dielectric.eta, state.exit_alpha[slot]}, geom, omega_o,
+                  light_pdf, false, distant);
+  queue_weighted(ctx, Strategy::kUnidirectionalBsdf, s, slot, state.throughput(slot) * le, 0, 0,
+                 shadow);
+}
+
+namespace {
+
+// The manifold strategy's reflection chains (docs/method.md 3.12): the light refracted in at y
+// and reflected specularly inside the sphere before it reaches x_j. No other strategy makes
+// these paths under a delta light, so each counts with weight 1, over the probability of having
+// searched its reflection count (`u`). The walk would have spent one depth per reflection and
+// one for the exit, so chains stop where the path tracer's depth limit would.
+void connect_reflection_chains(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                               const MediumInfo& m, const Shape& sphere,
+                               const DielectricParams& interface, const LightSample& light, float u,
+                               ShadowQueue& shadow, KernelCounters& counters) {
+  const ChainChoice choice = choose_chain_reflections(u, m.chain_search);
+  const int depth_left = ctx.max_depth - static_cast<int>(state.depth[slot]) - 1;
+  if (choice.reflections < 1 || choice.reflections > std::min(depth_left, kMaxChainReflections)) {
+    return;
+  }
+  const Vec3 x_j = state.vertex_j(slot);
+  const SphereChains chains = sphere_reflection_chains_toward_light(
+      sphere.center, sphere.radius, interface.eta, light.wi, x_j, choice.reflections);
+  counters.count(SneeCounter::kManifoldReflectionDropped, static_cast<uint64_t>(chains.dropped));
+  const Vec3 w_before = state.direction_in_j(slot);
+  const Rgb beta = state.throughput(slot);
+  const size_t per_chain =
+      m.manifold_interior_clear ? 1 : static_cast<size_t>(choice.reflections) + 2;
+  size_t budget = kChainSegmentBudget;
+  for (int c = 0; c < chains.count; ++c) {
+    const SphereChain& chain = chains.chain[static_cast<size_t>(c)];
+    if (per_chain > budget) {
+      counters.count(SneeCounter::kManifoldReflectionDropped);
+      continue;
+    }
+    const double cos_l = dot(chain.n, light.wi);
+    if (!(cos_l > 0)) continue;
+    // Every reflection meets the boundary at the refracted angle of the entry, so each
+    // reflects the entry's Fresnel reflectance F_r (the same from both sides of the pair).
+    const double reflectance = fresnel_dielectric(static_cast<float>(cos_l), interface.eta);
+    const double scale = hg_phase(dot(w_before, -chain.omega_last), m.medium.asymmetry(x_j)) *
+                         (1.0 - reflectance) * std::pow(reflectance, chain.reflections) * cos_l /
+                         (chain.jacobian * light.pdf * choice.probability);
+    // The chain bends at its reflections; in a homogeneous medium (the manifold strategy's
+    // premise) its transmittance is that of its total length.
+    const Rgb unweighted =
+        beta * light.radiance *
+        m.medium.transmittance(x_j, -chain.omega_last, static_cast<float>(chain.length)) *
+        static_cast<float>(scale);
+    if (is_black(unweighted) || !is_finite(unweighted)) continue;
+    const uint32_t first =
+        shadow.add_segment(chain.y + ctx.epsilon * chain.n, light.wi, kInfinity, kVisibilityOnly);
+    uint32_t segments = 1;
+    if (!m.manifold_interior_clear) {
+      // Something reaches into the sphere: every chord can be blocked. From x_j back along the
+      // light's path, to the last reflection, then chord by chord to the entry (ends just
+      // inside).
+      const auto inner = [&](Vec3 q) { return q - ctx.epsilon * normalize(q - sphere.center); };
+      Vec3 from = x_j;
+      for (int b = chain.reflections - 1; b >= -1; --b) {
+        const Vec3 to = inner(b >= 0 ? chain.bounce[static_cast<size_t>(b)] : chain.y);
+        add_visibility_segment(shadow, from, to, 0.0f);
+        from = to;
+      }
+      segments += static_cast<uint32_t>(chain.reflections) + 1;
+    }
+    budget -= segments;
+    shadow.add_connection(
+        {ConnectionKind::kManifold, slot, first, segments, -1, unweighted, Rgb(0.0f)});
+    counters.count(SneeCounter::kManifoldReflectionConnections);
+  }
+}
+
+}  // namespace
+
+void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                      const MediumInfo& m, ShadowQueue& shadow, KernelCounters& counters) {
+  if (ctx.lights->empty() || (m.manifold_sphere < 0 && !m.manifold_unsupported)) return;
+  const Vec3 x_j = state.vertex_j(slot);
+  const RandomBlock r = draw(ctx, state, slot, RngPurpose::kSneeManifold);
+  const LightSample light = ctx.lights->sample(x_j, r.u[0], {r.u[1], r.u[2]});
+  // Directional lights only: a point light's exit points need a solve in two dimensions.
+  if (!light.valid || !light.delta || !std::isinf(light.distance) || !(light.pdf > 0) ||
+      is_black(light.radiance)) {
+    return;
+  }
+  if (m.manifold_sphere < 0) {
+    counters.count(SneeCounter::kManifoldUnsupportedBoundary);
+    return;
+  }
+  const Shape& sphere = ctx.scene->shapes[static_cast<size_t>(m.manifold_sphere)];
+  const DielectricParams& interface =
+      ctx.surfaces[static_cast<size_t>(m.manifold_sphere)].dielectric;
+  const SphereExits exits =
+      sphere_exits_toward_light(sphere.center, sphere.radius, interface.eta, light.wi, x_j);
+  if (exits.count == 0) counters.count(SneeCounter::kManifoldNoExit);
+  const Vec3 w_before = state.direction_in_j(slot);
+  const double curvature = 1.0 / sphere.radius;
+  SneeSuffix s;
+  s.x_i = state.vertex_i(slot);
+  s.omega_in = state.direction_in_i(slot);
+  s.x_j = x_j;
+  s.omega_o = light.wi;
+  s.medium = m.medium;
+  s.interface = interface;
+  s.light_pdf = light.pdf;
+  s.light_delta = true;
+  s.light_distant = true;
+  s.x_i_medium = (state.flags[slot] & kPathMediumVertexI) != 0;
+  s.x_j_medium = true;
+  s.manifold = true;
+  s.boundary_curvature = static_cast<float>(curvature);
+  const Rgb beta = state.throughput(slot);
+  for (int e = 0; e < exits.count; ++e) {
+    const SphereExit& exit = exits.exit[static_cast<size_t>(e)];
+    const double cos_l = dot(exit.n, light.wi);
+    const double jacobian =
+        refraction_volume_jacobian(exit.n, light.wi, interface.eta, curvature, exit.t);
+    if (!(cos_l > 0) || !(jacobian > 0)) continue;
+    // docs/method.md 3.10: f_p T (1 - F_r) E cos_L / J per unit volume at x_j, over the
+    // light's selection probability.
+    const double scale = hg_phase(dot(w_before, -exit.omega_r), m.medium.asymmetry(x_j)) *
+                         (1.0 - fresnel_dielectric(static_cast<float>(cos_l), interface.eta)) *
+                         cos_l / (jacobian * light.pdf);
+    const Rgb unweighted = beta * light.radiance *
+                           m.medium.transmittance(x_j, -exit.omega_r, static_cast<float>(exit.t)) *
+                           static_cast<float>(scale);
+    if (is_black(unweighted) || !is_finite(unweighted)) continue;
+    s.x_k = exit.y;
+    s.n_k = s.ns_k = exit.n;
+    const Vec3 inner = exit.y - ctx.epsilon * exit.n, outer = exit.y + ctx.epsilon * exit.n;
+    const uint32_t first = add_visibility_segment(shadow, x_j, inner, 0.0f);
+    shadow.add_segment(outer, light.wi, kInfinity, kVisibilityOnly);
+    if (s.x_i_medium) {
+      queue_weighted(ctx, Strategy::kManifold, s, slot, unweighted, first, 2, shadow,
+                     ConnectionKind::kManifold);
+    } else {
+      // x_i is a surface vertex: no probe-based strategy competes, V_first does not matter.
+      const float w = static_cast<float>(snee_exit_weight(Strategy::kManifold, s, ctx.snee));
+      shadow.add_connection(
+          {ConnectionKind::kManifold, slot, first, 2, -1, unweighted * w, Rgb(0.0f)});
+    }
+    counters.count(SneeCounter::kManifoldConnections);
+  }
+  if (ctx.snee.reflection_chains) {
+    connect_reflection_chains(ctx, state, slot, m, sphere, interface, light, r.u[3], shadow,
+                              counters);
+  }
+}
+
+}  // namespace snee

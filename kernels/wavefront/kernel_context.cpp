@@ -1,0 +1,176 @@
+#include "kernels/wavefront/kernel_context.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "kernels/physics/bsdf/fresnel.h"
+#include "kernels/physics/snee/manifold_sphere.h"
+#include "scene/shape_bounds.h"
+
+namespace snee {
+
+const char* integrator_name(Integrator i) {
+  switch (i) {
+    case Integrator::kPathTracer:
+      return "pt";
+    case Integrator::kSnee:
+      return "snee";
+    case Integrator::kStraightLine:
+      return "sla";
+  }
+  return "?";
+}
+
+const char* ray_kind_name(RayKind k) {
+  switch (k) {
+    case RayKind::kCamera:
+      return "camera";
+    case RayKind::kExtension:
+      return "extension";
+    case RayKind::kShadow:
+      return "shadow";
+    case RayKind::kProbe:
+      return "probe";
+    case RayKind::kCount:
+      break;
+  }
+  return "?";
+}
+
+const char* batched_kernel_name(BatchedKernel k) {
+  switch (k) {
+    case BatchedKernel::kCameraRays:
+      return "generate";
+    case BatchedKernel::kMediumFlights:
+      return "medium_event";
+    case BatchedKernel::kSurfaceSamples:
+      return "shade_surface";
+    case BatchedKernel::kProbeDirections:
+      return "snee_probe";
+    case BatchedKernel::kSubdivisionDraws:
+      return "subdivision";
+    case BatchedKernel::kSubdivisionSamples:
+      return "subdivision_samples";
+    case BatchedKernel::kSubdivisionWeights:
+      return "subdivision_weights";
+    case BatchedKernel::kCount:
+      break;
+  }
+  return "?";
+}
+
+Integrator parse_integrator(const std::string& name) {
+  if (name == "pt") return Integrator::kPathTracer;
+  if (name == "snee") return Integrator::kSnee;
+  if (name == "sla") return Integrator::kStraightLine;
+  throw std::invalid_argument("unknown integrator '" + name + "' (expected pt, snee or sla)");
+}
+
+void KernelCounters::add(const KernelCounters& o) {
+  for (size_t i = 0; i < rays.size(); ++i) rays[i] += o.rays[i];
+  for (size_t i = 0; i < snee.size(); ++i) snee[i] += o.snee[i];
+  paths += o.paths;
+  nonfinite_samples += o.nonfinite_samples;
+  for (size_t i = 0; i < lanes.size(); ++i) {
+    lanes[i].active += o.lanes[i].active;
+    lanes[i].run += o.lanes[i].run;
+  }
+}
+
+namespace {
+
+// The diffuse colour, the metal's normal-incidence reflectance, the sheet's reflectance plus
+// transmittance; a rough dielectric is colourless (white).
+Rgb aov_albedo(const SurfaceInfo& info) {
+  switch (info.kind) {
+    case MaterialKind::kDiffuse:
+      return info.albedo;
+    case MaterialKind::kConductor:
+      return fresnel_conductor(1.0f, info.conductor.eta, info.conductor.k);
+    case MaterialKind::kDiffuseTransmission:
+      return info.sheet.reflectance + info.sheet.transmittance;
+    default:
+      return Rgb(1.0f);
+  }
+}
+
+// Whether no shape but `sphere` has a bounding box that meets the sphere (a conservative test:
+// a box that only grazes it counts as reaching in).
+bool nothing_reaches_into(const Scene& s, size_t sphere) {
+  const Shape& ball = s.shapes[sphere];
+  for (size_t j = 0; j < s.shapes.size(); ++j) {
+    if (j == sphere) continue;
+    ShapeBounds box;
+    box.add(s.shapes[j]);
+    if (box.empty()) continue;
+    const Vec3 nearest = vmin(vmax(ball.center, box.lo), box.hi);
+    if (length(nearest - ball.center) <= ball.radius) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l,
+                             Integrator integ, uint32_t seed_, int max_depth_,
+                             const SneeOptions& snee_)
+    : scene(&s),
+      embree(&e),
+      lights(&l),
+      integrator(integ),
+      seed(seed_),
+      max_depth(max_depth_),
+      snee(snee_),
+      epsilon(e.ray_epsilon()),
+      camera(camera_frame(s.camera)),
+      width(s.camera.width),
+      height(s.camera.height),
+      pixel_spread(2.0f * image_half_extents(s.camera).y / static_cast<float>(s.camera.height)),
+      textures(s.textures.empty() ? nullptr : std::make_shared<const TextureSet>(s.textures)) {
+  media.reserve(s.media.size());
+  for (const Medium& m : s.media) media.push_back({{m.sigma_s, m.sigma_t(), m.g}, true});
+  std::vector<int> boundaries(s.media.size(), 0);
+  surfaces.reserve(s.shapes.size());
+  for (const Shape& shape : s.shapes) {
+    const Material& mat = s.materials.at(static_cast<size_t>(shape.material));
+    SurfaceInfo info{mat.kind,
+                     {mat.ior, mat.roughness},
+                     mat.albedo,
+                     shape.interior_medium,
+                     !is_black(shape.emission),
+                     {mat.conductor_eta, mat.conductor_k, mat.roughness},
+                     {mat.albedo, mat.transmittance},
+                     Rgb(0.0f),
+                     shape.smooth_shading};
+    info.aov_albedo = aov_albedo(info);
+    info.closed = shape.closed;
+    info.albedo_texture = mat.albedo_texture;
+    info.roughness_texture = mat.roughness_texture;
+    info.roughness_texture_squared = mat.roughness_texture_squared;
+    surfaces.push_back(info);
+    if (mat.kind == MaterialKind::kNull) has_null_surfaces = true;
+    if (shape.interior_medium >= 0 && mat.kind != MaterialKind::kNull) {
+      media[static_cast<size_t>(shape.interior_medium)].straight_nee = false;
+      ++boundaries[static_cast<size_t>(shape.interior_medium)];
+    }
+  }
+  for (size_t i = 0; i < s.shapes.size(); ++i) {
+    const Shape& shape = s.shapes[i];
+    const SurfaceInfo& info = surfaces[i];
+    if (shape.interior_medium < 0 || info.kind != MaterialKind::kDielectric ||
+        !info.dielectric.delta() || info.dielectric.eta == 1.0f) {
+      continue;
+    }
+    MediumInfo& m = media[static_cast<size_t>(shape.interior_medium)];
+    if (shape.kind == ShapeKind::kSphere &&
+        boundaries[static_cast<size_t>(shape.interior_medium)] == 1) {
+      m.manifold_sphere = static_cast<int32_t>(i);
+      m.manifold_interior_clear = nothing_reaches_into(s, i);
+      m.chain_search = chain_search_probability(m.medium.sigma_t, shape.radius);
+    } else {
+      m.manifold_unsupported = true;
+    }
+  }
+}
+
+}  // namespace snee

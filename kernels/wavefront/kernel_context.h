@@ -1,0 +1,158 @@
+// Everything the stage kernels read but never write: the scene's Embree handle and light
+// table, per-shape and per-medium parameters flattened for fast lookup, the camera basis and
+// the integrator settings. Built once per render and shared by all work units.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "kernels/physics/bsdf/conductor.h"
+#include "kernels/physics/bsdf/dielectric.h"
+#include "kernels/physics/bsdf/diffuse_transmission.h"
+#include "kernels/physics/lights/light_table.h"
+#include "kernels/physics/medium/homogeneous_medium.h"
+#include "kernels/physics/snee/snee_options.h"
+#include "kernels/wavefront/snee_counters.h"
+#include "scene/camera_frame.h"
+#include "scene/embree_scene.h"
+#include "scene/scene.h"
+#include "scene/texture_set.h"
+
+namespace snee {
+
+enum class Integrator : uint8_t {
+  kPathTracer,    // "pt": volumetric path tracing, NEE only where no refraction is in the way
+  kSnee,          // "snee": pt plus subdivision next-event estimation at medium vertices
+  kStraightLine,  // "sla": shadow rays pass dielectric boundaries with Fresnel transmittance
+                  // (biased)
+};
+const char* integrator_name(Integrator i);
+// Throws std::invalid_argument listing the valid names.
+Integrator parse_integrator(const std::string& name);
+
+struct SurfaceInfo {
+  MaterialKind kind;
+  DielectricParams dielectric;
+  Rgb albedo;               // diffuse
+  int32_t interior_medium;  // medium entered when crossing against the outward normal
+  bool emissive;
+  ConductorParams conductor;
+  DiffuseTransmissionParams sheet;
+  // The first-hit albedo AOV (first_hit_aovs.h), fixed per surface, so computed once here.
+  Rgb aov_albedo;
+  // Shaded with the mesh's interpolated vertex normals (Shape::smooth_shading; shading_normal.h).
+  bool smooth_shading;
+  // A sphere or a mesh without boundary edges (Shape::closed): a ray is on one side of it, which
+  // the path tracks (kPathInsideVolume) for its dielectric and null boundaries.
+  bool closed = false;
+  // Diffuse: index into KernelContext::textures whose colour multiplies albedo (and
+  // aov_albedo) at each hit (surface_texture.h); -1 for none.
+  int32_t albedo_texture = -1;
+  // Dielectric and conductor: index into KernelContext::textures that scales the GGX alpha at
+  // each hit (Material::roughness_texture, surface_texture.h); -1 for none.
+  int32_t roughness_texture = -1;
+  bool roughness_texture_squared = false;
+  // A mirror or a smooth dielectric: no light sampling, no AOV vertex.
+  bool delta() const {
+    return (kind == MaterialKind::kDielectric && dielectric.delta()) ||
+           (kind == MaterialKind::kConductor && conductor.delta());
+  }
+};
+
+struct MediumInfo {
+  HomogeneousMedium medium;
+  // True when every boundary of this medium is an index-matched (null) interface, so a
+  // straight shadow ray from inside can reach a light: only then is medium NEE worth a ray.
+  bool straight_nee;
+  // The shape index of the smooth dielectric sphere that is this medium's only boundary, where
+  // the manifold strategy can find exit points (docs/method.md 3.10); -1 if there is none.
+  int32_t manifold_sphere = -1;
+  // Whether the boundary is a smooth dielectric the manifold strategy has no solver for (a
+  // mesh, or several shapes): its single-scattered light under a directional light is missing.
+  bool manifold_unsupported = false;
+  // Whether no other shape reaches into manifold_sphere (no bounding box meets it), so a path
+  // inside it cannot be blocked: its reflection chains then need only their light segment.
+  bool manifold_interior_clear = false;
+  // How often a vertex searches for reflection chains (chain_search_probability).
+  double chain_search = 0.0;
+};
+
+// The stage kernels that run their queue in SIMD chunks, for lane-occupancy counters.
+enum class BatchedKernel : int {
+  kCameraRays,
+  kMediumFlights,
+  kSurfaceSamples,
+  kProbeDirections,
+  kSubdivisionDraws,
+  kSubdivisionSamples,
+  kSubdivisionWeights,
+  kCount
+};
+inline constexpr int kBatchedKernels = static_cast<int>(BatchedKernel::kCount);
+// The stage's name: "generate", "medium_event", "shade_surface", "snee_probe", "subdivision";
+// subdivision's later passes, which sample the strategies and weigh their proposals, are
+// "subdivision_samples" and "subdivision_weights".
+const char* batched_kernel_name(BatchedKernel k);
+
+// Lanes that held a queued slot, and lanes computed (a short chunk still runs at full width).
+struct LaneCount {
+  uint64_t active = 0;
+  uint64_t run = 0;
+  double occupancy() const { return run > 0 ? static_cast<double>(active) / run : 0.0; }
+};
+
+// The rays the stages trace, for KernelCounters::rays: camera and extension rays (extend),
+// shadow segments (shadow_connect) and SNEE exit-point probes (snee_probe).
+enum class RayKind : int { kCamera, kExtension, kShadow, kProbe, kCount };
+inline constexpr int kRayKinds = static_cast<int>(RayKind::kCount);
+// "camera", "extension", "shadow", "probe": the keys of the statistics' "rays".
+const char* ray_kind_name(RayKind k);
+
+// Counters kept per thread and summed at the end.
+struct KernelCounters {
+  std::array<uint64_t, kRayKinds> rays{};  // by RayKind
+  uint64_t paths = 0;
+  uint64_t nonfinite_samples = 0;
+  SneeCounters snee{};
+  std::array<LaneCount, kBatchedKernels> lanes{};
+  void count(SneeCounter c, uint64_t n = 1) { snee[static_cast<int>(c)] += n; }
+  void count_rays(RayKind k, uint64_t n) { rays[static_cast<int>(k)] += n; }
+  void count_lanes(BatchedKernel k, uint64_t active, uint64_t width) {
+    lanes[static_cast<int>(k)].active += active;
+    lanes[static_cast<int>(k)].run += width;
+  }
+  void add(const KernelCounters& o);
+};
+
+struct KernelContext {
+  KernelContext(const Scene& scene, const EmbreeScene& embree, const LightTable& lights,
+                Integrator integrator, uint32_t seed, int max_depth, const SneeOptions& snee);
+
+  const Scene* scene;
+  const EmbreeScene* embree;
+  const LightTable* lights;
+  std::vector<SurfaceInfo> surfaces;  // by shape index (= Embree geometry ID)
+  std::vector<MediumInfo> media;
+  Integrator integrator;
+  uint32_t seed;
+  int max_depth;
+  SneeOptions snee;
+  bool has_null_surfaces = false;
+  // Each sample's RGB is clipped to this before it reaches the film (0: never). Biased: it
+  // trades the energy of rare bright paths (fireflies) for less variance.
+  float sample_clamp = 0.0f;
+  // Paths record their first non-specular hit's albedo, normal and depth (first_hit_aovs.h).
+  bool record_aovs = false;
+  float epsilon;
+  CameraFrame camera;
+  int width, height;
+  // The width of one pixel's footprint per unit of distance from the camera, for the texture
+  // footprint of a hit (surface_texture.h).
+  float pixel_spread;
+  // The scene's textures; null when it has none.
+  std::shared_ptr<const TextureSet> textures;
+};
+
+}  // namespace snee

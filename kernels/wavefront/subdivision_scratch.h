@@ -1,0 +1,82 @@
+// What the subdivision stage keeps per exit of its queue between its passes (kernels/
+// subdivision.cpp): the random numbers, each strategy's batched part, the light samples of
+// top-to-bottom, and the proposals waiting to be weighed. Sized once per work unit; filling it
+// never allocates.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "kernels/physics/snee/snee_strategies.h"
+#include "kernels/wavefront/queues.h"
+
+namespace snee {
+
+// The exits' random numbers by queue position: for each of the two strategies two Philox
+// blocks of four numbers (drawn in SIMD chunks, used per exit), read by the names of
+// kernels/physics/snee/strategy_randoms.h.
+struct SubdivisionRandoms {
+  static constexpr int kBlocks = 4;  // top-to-bottom: 2, bottom-to-top: 2
+  static_assert(kTopToBottomDimensions == 8 && kBottomToTopDimensions <= 8);
+  explicit SubdivisionRandoms(size_t capacity) {
+    for (AlignedArray<float>& a : u) a = AlignedArray<float>(padded_capacity(capacity));
+  }
+  // Number n of top-to-bottom's u (TopToBottomRandoms), and of bottom-to-top's.
+  const AlignedArray<float>& top_to_bottom(int n) const { return u[n]; }
+  const AlignedArray<float>& bottom_to_top(int n) const { return u[kTopToBottomDimensions + n]; }
+  // u[4 b + j]: number j of block b at each queue position.
+  std::array<AlignedArray<float>, 4 * kBlocks> u;
+};
+
+// How far a strategy's batched part got at an exit.
+inline constexpr uint32_t kSneeSampled = 0, kSneeNotPlaced = 1, kSneeNotRefracted = 2,
+                          kSneeNoDistance = 3;
+
+// A strategy's batched part at each exit: the middle vertex, the direction it found (bottom-to-
+// top: omega_o; top-to-bottom keeps the light's), the sampling density and the status.
+struct StrategyResults {
+  explicit StrategyResults(size_t capacity) : status(padded_capacity(capacity)) {
+    for (AlignedArray<float>* a : {&x, &y, &z, &wx, &wy, &wz, &pdf})
+      *a = AlignedArray<float>(padded_capacity(capacity));
+  }
+  AlignedArray<float> x, y, z, wx, wy, wz, pdf;
+  AlignedArray<uint32_t> status;
+};
+
+// Top-to-bottom's light samples at each exit, taken per exit before its batched part, and
+// whether each gives a usable direction (lit = 1).
+struct TopToBottomLights {
+  explicit TopToBottomLights(size_t capacity) : samples(capacity) {
+    for (AlignedArray<float>* a : {&wx, &wy, &wz, &pdf, &delta, &lit})
+      *a = AlignedArray<float>(padded_capacity(capacity));
+  }
+  std::vector<LightSample> samples;
+  AlignedArray<float> wx, wy, wz, pdf, delta, lit;
+};
+
+// The proposals that sampled something, in exit order, waiting for the batched weighing;
+// reserved for two per exit.
+struct ProposalQueue {
+  explicit ProposalQueue(size_t capacity) { entries.reserve(2 * capacity); }
+  struct Entry {
+    SneeProposal proposal;
+    Strategy strategy;
+    uint32_t slot;
+  };
+  std::vector<Entry> entries;
+};
+
+struct SubdivisionScratch {
+  explicit SubdivisionScratch(size_t capacity)
+      : randoms(capacity),
+        lights(capacity),
+        top_to_bottom(capacity),
+        bottom_to_top(capacity),
+        proposals(capacity) {}
+  SubdivisionRandoms randoms;
+  TopToBottomLights lights;
+  StrategyResults top_to_bottom, bottom_to_top;
+  ProposalQueue proposals;
+};
+
+}  // namespace snee
