@@ -136,9 +136,9 @@ int BenchCommand::run() const {
               settings.repeats);
   for (const int t : settings.threads) std::printf(" %d", t);
   std::printf(
-      "\npath state: %zu bytes per slot; SIMD width %zu lanes (\"lanes\": occupancy of the "
-      "batched kernels' lanes)\n",
-      PathState::bytes_per_slot(), simd::kLanes);
+      "\npath state: %zu bytes per slot (%zu for snee, with its vertex memory); SIMD width %zu "
+      "lanes (\"lanes\": occupancy of the batched kernels' lanes)\n",
+      PathState::bytes_per_slot(false), PathState::bytes_per_slot(true), simd::kLanes);
 
   nlohmann::ordered_json workloads = nlohmann::ordered_json::array();
   for (BenchWorkload& w : set.workloads) {
@@ -208,7 +208,8 @@ int BenchCommand::run() const {
           {"raw_rays_per_query", settings.raw_rays},
           {"raw_repeats", settings.raw_repeats},
           {"schedules", kSchedules}}},
-        {"path_state_bytes_per_slot", PathState::bytes_per_slot()},
+        {"path_state_bytes_per_slot", PathState::bytes_per_slot(false)},
+        {"path_state_bytes_per_slot_snee", PathState::bytes_per_slot(true)},
         {"simd_width", simd::kLanes},
         {"skipped", set.skipped},
         {"workloads", workloads},

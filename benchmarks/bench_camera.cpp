@@ -22,7 +22,7 @@ struct CameraFixture {
         embree(scene),
         lights(scene),
         ctx(scene, embree, lights, Integrator::kPathTracer, 1, 16, SneeOptions{}),
-        state(bench::kItems),
+        state(bench::kItems, false),
         queues(bench::kItems),
         slots(bench::kItems),
         pixels(bench::kItems),

@@ -22,8 +22,8 @@ struct StageBench {
         embree(scene),
         lights(scene),
         ctx(scene, embree, lights, Integrator::kPathTracer, 1, 1024, SneeOptions{}),
-        start(kSlots),
-        state(kSlots),
+        start(kSlots, false),
+        state(kSlots, false),
         queues(kSlots) {}
 
   // Paths at their fourth vertex (so roulette runs), with random directions from random

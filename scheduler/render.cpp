@@ -227,11 +227,13 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   // The megakernel is the same loop over one-slot workspaces: one path at a time per thread.
   const size_t slots =
       schedule == Schedule::kMegakernel ? 1 : static_cast<size_t>(options.queue_capacity);
-  ThreadWorkspaces workspaces(slots);
+  const bool snee_memory = ctx.integrator == Integrator::kSnee;
+  ThreadWorkspaces workspaces(slots, snee_memory);
   std::vector<std::unique_ptr<UnitWorkspace>> lanes;
   if (schedule == Schedule::kGlobal) {
     const size_t lane_count = std::min(lead, kGlobalLanesPerThread * threads);
-    for (size_t i = 0; i < lane_count; ++i) lanes.push_back(std::make_unique<UnitWorkspace>(slots));
+    for (size_t i = 0; i < lane_count; ++i)
+      lanes.push_back(std::make_unique<UnitWorkspace>(slots, snee_memory));
   }
   arena.execute([&] {
     if (schedule == Schedule::kGlobal) {
@@ -261,7 +263,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   stats.threads = threads;
   stats.tiles_rendered = costs.tiles_run();
   stats.tile_seconds = costs.seconds();
-  stats.path_state_bytes_per_slot = PathState::bytes_per_slot();
+  stats.path_state_bytes_per_slot = PathState::bytes_per_slot(snee_memory);
   KernelCounters counters;
   uint64_t slot_turns = 0, active_slot_turns = 0;
   for (const UnitWorkspace& ws : workspaces)

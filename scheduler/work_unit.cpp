@@ -141,9 +141,9 @@ void run_row(const KernelContext& ctx, Stage stage, Input input, Run& run, UnitW
 
 }  // namespace
 
-UnitWorkspace::UnitWorkspace(size_t slot_count)
+UnitWorkspace::UnitWorkspace(size_t slot_count, bool snee_memory)
     : slots(slot_count),
-      state(slot_count),
+      state(slot_count, snee_memory),
       queues(slot_count),
       timing_period(static_cast<uint32_t>(std::max<size_t>(1, kSlotsPerTimedTurn / slot_count))) {
   free_slots.reserve(slots);

@@ -34,9 +34,10 @@ struct WorkUnit {
   }
 };
 
-// Path state, queues and statistics of `slots` path slots, reused by every unit run in it.
+// Path state, queues and statistics of `slots` path slots, reused by every unit run in it;
+// SNEE's memory of each path only where the snee integrator runs (PathState).
 struct UnitWorkspace {
-  explicit UnitWorkspace(size_t slots);
+  UnitWorkspace(size_t slots, bool snee_memory);
   size_t slots;  // PathState pads its arrays; only these slots hold paths
   PathState state;
   StageQueues queues;

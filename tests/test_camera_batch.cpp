@@ -104,7 +104,7 @@ class GenerateCameraRays : public ::testing::TestWithParam<bool> {
       pixels[i] = static_cast<uint32_t>(i) % pixel_count;
       samples[i] = 3 + static_cast<uint32_t>(i) / pixel_count;
     }
-    PathState state(capacity_);
+    PathState state(capacity_, false);
     const uint32_t sentinel = 0x7FC12345u;  // a NaN payload as float, a large value as int
 #define SNEE_FILL_FIELD(type, name) \
   std::fill_n(reinterpret_cast<uint32_t*>(state.name), state.capacity(), sentinel);

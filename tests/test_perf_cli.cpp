@@ -55,11 +55,15 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
   ASSERT_EQ(snee("bench --quick --threads 1,2 --json b.json"), 0) << output_;
   EXPECT_NE(output_.find("megakernel"), std::string::npos) << output_;
   const nlohmann::json b = json("b.json");
-  expect_keys(b,
-              {"version", "date", "machine", "settings", "path_state_bytes_per_slot", "simd_width",
-               "skipped", "workloads", "memory_vs_spp"},
-              "bench");
+  expect_keys(
+      b,
+      {"version", "date", "machine", "settings", "path_state_bytes_per_slot",
+       "path_state_bytes_per_slot_snee", "simd_width", "skipped", "workloads", "memory_vs_spp"},
+      "bench");
   EXPECT_GT(b["path_state_bytes_per_slot"].get<int>(), 0);
+  // SNEE's vertex memory is allocated only for snee.
+  EXPECT_GT(b["path_state_bytes_per_slot_snee"].get<int>(),
+            b["path_state_bytes_per_slot"].get<int>());
   ASSERT_GE(b["workloads"].size(), 5u);
   for (const auto& w : b["workloads"]) {
     const std::string name = w["name"];

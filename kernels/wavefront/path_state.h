@@ -43,46 +43,60 @@ enum PathFlags : uint32_t {
   X(float, mis_pdf)       /* direction pdf at the last vertex if it also sampled lights */      \
   X(float, eta_scale)     /* undoes the eta^2 radiance scaling for Russian roulette */          \
   X(float, channel_p_r) X(float, channel_p_g) X(float, channel_p_b) /* spectral MIS weights */  \
-  X(float, xi_x) X(float, xi_y) X(float, xi_z)     /* SNEE memory: medium vertex x_i */         \
+  X(float, xj_x) X(float, xj_y) X(float, xj_z)     /* the latest vertex x_j (area-light MIS) */ \
+  X(float, aov_albedo_r) X(float, aov_albedo_g) X(float, aov_albedo_b) /* first_hit_aovs.h */  \
+  X(float, aov_normal_x) X(float, aov_normal_y) X(float, aov_normal_z)                         \
+  X(float, aov_depth)
+
+// SNEE's memory of the path, allocated only for the snee integrator (the only one that reads
+// it): the vertex x_i before x_j, the directions arriving at both, and what an exit event
+// SNEE competes with remembers until the next hit.
+#define SNEE_PATH_SNEE_FIELDS(X)                                                                \
+  X(float, xi_x) X(float, xi_y) X(float, xi_z)     /* medium vertex x_i */                      \
   X(float, win_x) X(float, win_y) X(float, win_z)  /* propagation direction arriving at x_i */  \
-  X(float, xj_x) X(float, xj_y) X(float, xj_z)     /* the vertex after it, x_j */               \
   X(float, wjn_x) X(float, wjn_y) X(float, wjn_z)  /* propagation direction arriving at x_j */ \
-  X(uint32_t, exit_geom)                           /* SNEE exit memory: the exit surface */    \
+  X(uint32_t, exit_geom)                           /* the exit surface */                      \
   X(float, exit_xi_x) X(float, exit_xi_y) X(float, exit_xi_z)     /* x_i of the exit's suffix */ \
   X(float, exit_win_x) X(float, exit_win_y) X(float, exit_win_z)  /* arriving at that x_i */   \
   X(float, exit_nk_x) X(float, exit_nk_y) X(float, exit_nk_z)     /* normal at the exit x_k */ \
   X(float, exit_nsk_x) X(float, exit_nsk_y) X(float, exit_nsk_z)  /* its shading normal */     \
-  X(float, exit_alpha)                           /* the interface's roughness at x_k */        \
-  X(float, aov_albedo_r) X(float, aov_albedo_g) X(float, aov_albedo_b) /* first_hit_aovs.h */  \
-  X(float, aov_normal_x) X(float, aov_normal_y) X(float, aov_normal_z)                         \
-  X(float, aov_depth)
+  X(float, exit_alpha)                           /* the interface's roughness at x_k */
 // clang-format on
 
 struct PathState {
 #define SNEE_DECLARE_FIELD(type, name) type* name = nullptr;
   SNEE_PATH_FIELDS(SNEE_DECLARE_FIELD)
+  SNEE_PATH_SNEE_FIELDS(SNEE_DECLARE_FIELD)  // null unless allocated
 #undef SNEE_DECLARE_FIELD
 
-  static constexpr size_t bytes_per_slot() {
+  static constexpr size_t bytes_per_slot(bool snee_memory) {
     size_t bytes = 0;
 #define SNEE_COUNT_FIELD(type, name) bytes += sizeof(type);
     SNEE_PATH_FIELDS(SNEE_COUNT_FIELD)
+    if (snee_memory) {
+      SNEE_PATH_SNEE_FIELDS(SNEE_COUNT_FIELD)
+    }
 #undef SNEE_COUNT_FIELD
     return bytes;
   }
 
-  explicit PathState(size_t capacity) : capacity_(round_up(capacity)) {
-    size_t offset = 0;
-#define SNEE_OFFSET_FIELD(type, name) offset += capacity_ * sizeof(type);
-    SNEE_PATH_FIELDS(SNEE_OFFSET_FIELD)
-#undef SNEE_OFFSET_FIELD
-    storage_.reset(static_cast<std::byte*>(::operator new (offset, std::align_val_t{64})));
+  // snee_memory: whether to allocate SNEE_PATH_SNEE_FIELDS (the snee integrator needs them).
+  PathState(size_t capacity, bool snee_memory) : capacity_(round_up(capacity)) {
+    storage_.reset(static_cast<std::byte*>(
+        ::operator new (capacity_* bytes_per_slot(snee_memory), std::align_val_t{64})));
     std::byte* p = storage_.get();
 #define SNEE_ASSIGN_FIELD(type, name) \
   name = reinterpret_cast<type*>(p);  \
   p += capacity_ * sizeof(type);
     SNEE_PATH_FIELDS(SNEE_ASSIGN_FIELD)
+    if (snee_memory) {
+      SNEE_PATH_SNEE_FIELDS(SNEE_ASSIGN_FIELD)
+    }
 #undef SNEE_ASSIGN_FIELD
+  }
+
+  bool has_snee_memory() const {
+    return xi_x != nullptr;
   }
 
   size_t capacity() const {
@@ -91,7 +105,8 @@ struct PathState {
   // Every field of every slot from a workspace of the same capacity (benchmarks rerun a stage
   // from one starting state).
   void copy_from(const PathState& other) {
-    std::memcpy(storage_.get(), other.storage_.get(), capacity_ * bytes_per_slot());
+    std::memcpy(storage_.get(), other.storage_.get(),
+                capacity_ * bytes_per_slot(has_snee_memory()));
   }
 
   Rgb throughput(uint32_t s) const {
@@ -148,18 +163,20 @@ struct PathState {
   // Records a new vertex x (with the propagation direction arriving at it); x_j becomes x_i.
   void push_vertex(uint32_t s, Vec3 x, Vec3 w_arriving, bool medium_vertex) {
     const bool j_was_medium = (flags[s] & kPathMediumVertexJ) != 0;
-    xi_x[s] = xj_x[s];
-    xi_y[s] = xj_y[s];
-    xi_z[s] = xj_z[s];
-    win_x[s] = wjn_x[s];
-    win_y[s] = wjn_y[s];
-    win_z[s] = wjn_z[s];
+    if (has_snee_memory()) {
+      xi_x[s] = xj_x[s];
+      xi_y[s] = xj_y[s];
+      xi_z[s] = xj_z[s];
+      win_x[s] = wjn_x[s];
+      win_y[s] = wjn_y[s];
+      win_z[s] = wjn_z[s];
+      wjn_x[s] = w_arriving.x;
+      wjn_y[s] = w_arriving.y;
+      wjn_z[s] = w_arriving.z;
+    }
     xj_x[s] = x.x;
     xj_y[s] = x.y;
     xj_z[s] = x.z;
-    wjn_x[s] = w_arriving.x;
-    wjn_y[s] = w_arriving.y;
-    wjn_z[s] = w_arriving.z;
     flags[s] = (flags[s] & ~(kPathMediumVertexI | kPathMediumVertexJ)) |
                (j_was_medium ? kPathMediumVertexI : 0u) | (medium_vertex ? kPathMediumVertexJ : 0u);
   }
