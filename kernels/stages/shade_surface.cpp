@@ -23,59 +23,57 @@ namespace {
 using simd::FloatBatch;
 using simd::UintBatch;
 
-// Hit point, normals and interface of every queued surface hit, by queue position; the padding
-// after the last entry repeats the first, so whole batches read defined values.
+// Hit point, normals and interface of every queued surface hit, by queue position, and the
+// dielectric bucket with its sampling inputs; the padding after the last entry of either
+// repeats the first, so whole batches read defined values.
 void gather_hits(const KernelContext& ctx, const PathState& state, const SlotQueue& queue,
                  SurfaceResults& out) {
   const size_t n = queue.size();
-  // The interface each entry's lane samples with. Only dielectric entries use their sample;
-  // the others (diffuse, conductor, sheet, null) repeat the last dielectric's interface, so that a
-  // chunk mixing one dielectric with a diffuse floor stays on one sampling path
-  // (dielectric_batch.h).
-  DielectricParams lane_interface;
+  size_t bucket = 0;
   for (size_t k = 0; k < n; ++k) {
     const uint32_t s = queue[k];
     const uint32_t geom = state.hit_geom[s];
     const auto [p, normal] = ctx.embree->surface_point(
         geom, state.hit_prim[s], state.origin(s) + state.direction(s) * state.hit_t[s]);
     const SurfaceInfo& info = ctx.surfaces[geom];
-    if (info.kind == MaterialKind::kDielectric) {
-      lane_interface = dielectric_at(ctx, info, geom, state.hit_prim[s], p);
-    }
     const Vec3 shading = shading_normal(ctx, geom, state.hit_prim[s], p, normal);
     out.px[k] = p.x, out.py[k] = p.y, out.pz[k] = p.z;
     out.nx[k] = normal.x, out.ny[k] = normal.y, out.nz[k] = normal.z;
     out.snx[k] = shading.x, out.sny[k] = shading.y, out.snz[k] = shading.z;
-    out.eta[k] = lane_interface.eta, out.alpha[k] = lane_interface.alpha;
+    // Only a dielectric's interface is read (textured_surface); the others get the default.
+    const DielectricParams interface = info.kind == MaterialKind::kDielectric
+                                           ? dielectric_at(ctx, info, geom, state.hit_prim[s], p)
+                                           : DielectricParams{};
+    out.eta[k] = interface.eta, out.alpha[k] = interface.alpha;
+    if (info.kind == MaterialKind::kDielectric) {
+      out.bucket_of[k] = static_cast<uint32_t>(bucket);
+      out.bucket_slots[bucket] = s;
+      out.bucket_snx[bucket] = shading.x, out.bucket_sny[bucket] = shading.y;
+      out.bucket_snz[bucket] = shading.z;
+      out.bucket_eta[bucket] = interface.eta, out.bucket_alpha[bucket] = interface.alpha;
+      ++bucket;
+    }
     // The per-slot pass samples a light at every surface but null and delta ones.
     out.light_sampled[k] = info.kind != MaterialKind::kNull && !info.delta();
   }
-  for (size_t k = n; k < (n + simd::kLanes - 1) / simd::kLanes * simd::kLanes; ++k) {
-    for (AlignedArray<float>* field : {&out.px, &out.py, &out.pz, &out.nx, &out.ny, &out.nz,
-                                       &out.snx, &out.sny, &out.snz, &out.eta, &out.alpha})
-      (*field)[k] = (*field)[0];
-  }
+  out.bucket_size = bucket;
+  const auto pad = [](size_t size, std::initializer_list<AlignedArray<float>*> fields) {
+    for (size_t k = size; k < (size + simd::kLanes - 1) / simd::kLanes * simd::kLanes; ++k) {
+      for (AlignedArray<float>* field : fields) (*field)[k] = (*field)[0];
+    }
+  };
+  pad(n, {&out.px, &out.py, &out.pz, &out.nx, &out.ny, &out.nz, &out.snx, &out.sny, &out.snz});
+  pad(bucket,
+      {&out.bucket_snx, &out.bucket_sny, &out.bucket_snz, &out.bucket_eta, &out.bucket_alpha});
 }
 
-// The dielectric BSDF sample of one chunk of the queue at position k, in the frame of the
-// shading normal (the geometric one on flat surfaces), as the per-slot pass would draw it, and
-// the chunk's light-sample and roulette numbers. The side rule of a smooth-shaded surface is the
-// per-slot pass's, which knows the surface.
-void sample_chunk(const KernelContext& ctx, const PathState& state, const simd::SlotChunk& chunk,
-                  SurfaceResults& out, size_t k) {
-  const auto at = [k](const AlignedArray<float>& a) {
-    return FloatBatch::load_aligned(a.data() + k);
-  };
-  const simd::FrameBatch frame =
-      simd::FrameBatch::from_normal({at(out.snx), at(out.sny), at(out.snz)});
-  const simd::Vec3Batch wo = frame.to_local(
-      simd::negate({chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)}));
+// The light-sample and roulette numbers of one chunk of the queue at position k.
+void draw_chunk(const KernelContext& ctx, const PathState& state, const simd::SlotChunk& chunk,
+                SurfaceResults& out, size_t k) {
   const UintBatch pixel = chunk.load(state.pixel), sample = chunk.load(state.sample);
   const UintBatch event = chunk.load(state.event);
-  const simd::RandomBlockBatch r =
-      simd::random_block(ctx.seed, pixel, sample, event, RngPurpose::kBsdf, chunk.count());
-  // Light-sample and roulette numbers only for chunks where some path may use them (a
-  // non-delta surface; the fourth vertex on), so the one-slot megakernel draws what it needs.
+  // Only for chunks where some path may use them (a non-delta surface; the fourth vertex on),
+  // so the one-slot megakernel draws what it needs.
   if (!ctx.lights->empty() &&
       std::any_of(out.light_sampled.data() + k, out.light_sampled.data() + k + chunk.count(),
                   [](uint32_t b) { return b != 0; })) {
@@ -90,27 +88,42 @@ void sample_chunk(const KernelContext& ctx, const PathState& state, const simd::
         .u[0]
         .store_aligned(out.u_roulette.data() + k);
   }
+}
+
+// The dielectric BSDF sample of one chunk of the dielectric bucket at index j, in the frame of
+// the shading normal (the geometric one on flat surfaces), as the per-slot pass would draw it.
+// The side rule of a smooth-shaded surface is the per-slot pass's, which knows the surface.
+void sample_dielectric_chunk(const KernelContext& ctx, const PathState& state,
+                             const simd::SlotChunk& chunk, SurfaceResults& out, size_t j) {
+  const auto at = [j](const AlignedArray<float>& a) {
+    return FloatBatch::load_aligned(a.data() + j);
+  };
+  const simd::FrameBatch frame =
+      simd::FrameBatch::from_normal({at(out.bucket_snx), at(out.bucket_sny), at(out.bucket_snz)});
+  const simd::Vec3Batch wo = frame.to_local(
+      simd::negate({chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)}));
+  const simd::RandomBlockBatch r =
+      simd::random_block(ctx.seed, chunk.load(state.pixel), chunk.load(state.sample),
+                         chunk.load(state.event), RngPurpose::kBsdf, chunk.count());
   const simd::BsdfSampleBatch bs = simd::dielectric_sample(
-      simd::DielectricLanes{at(out.eta), at(out.alpha)}, wo, r.u[0], r.u[1], r.u[2]);
+      simd::DielectricLanes{at(out.bucket_eta), at(out.bucket_alpha)}, wo, r.u[0], r.u[1], r.u[2]);
   const simd::Vec3Batch wi = frame.to_world(bs.wi);
-  wi.x.store_aligned(out.wx.data() + k);
-  wi.y.store_aligned(out.wy.data() + k);
-  wi.z.store_aligned(out.wz.data() + k);
-  xsimd::abs(bs.wi.z).store_aligned(out.cos_local.data() + k);
-  bs.f.store_aligned(out.f.data() + k);
-  bs.pdf.store_aligned(out.pdf.data() + k);
+  simd::store_aligned(wi, out.wx.data() + j, out.wy.data() + j, out.wz.data() + j);
+  xsimd::abs(bs.wi.z).store_aligned(out.cos_local.data() + j);
+  bs.f.store_aligned(out.f.data() + j);
+  bs.pdf.store_aligned(out.pdf.data() + j);
   alignas(64) bool valid[simd::kLanes], transmission[simd::kLanes], delta[simd::kLanes];
   bs.valid.store_aligned(valid);
   bs.transmission.store_aligned(transmission);
   bs.delta.store_aligned(delta);
   for (size_t l = 0; l < simd::kLanes; ++l) {
-    out.flags[k + l] = (valid[l] ? kSurfaceSampleValid : 0u) |
+    out.flags[j + l] = (valid[l] ? kSurfaceSampleValid : 0u) |
                        (transmission[l] ? kSurfaceSampleTransmission : 0u) |
                        (delta[l] ? kSurfaceSampleDelta : 0u);
   }
 }
 
-// The batched sample of queue position k as the scalar BsdfSample (local z only as |cos|).
+// The batched sample of bucket index k as the scalar BsdfSample (local z only as |cos|).
 BsdfSample batched_sample(const SurfaceResults& r, size_t k) {
   BsdfSample bs;
   bs.wi = {0.0f, 0.0f, r.cos_local[k]};
@@ -224,9 +237,14 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
   SurfaceResults& hits = q.surfaces;
   const size_t n_hits = q.surface.size();
   gather_hits(ctx, state, q.surface, hits);
-  for_each_chunk(
-      q.surface.begin(), n_hits, BatchedKernel::kSurfaceSamples, counters,
-      [&](const simd::SlotChunk& chunk, size_t k) { sample_chunk(ctx, state, chunk, hits, k); });
+  for (size_t k = 0; k < n_hits; k += simd::kLanes) {
+    draw_chunk(ctx, state,
+               simd::SlotChunk(q.surface.begin() + k, std::min(simd::kLanes, n_hits - k)), hits, k);
+  }
+  for_each_chunk(hits.bucket_slots.data(), hits.bucket_size, BatchedKernel::kSurfaceSamples,
+                 counters, [&](const simd::SlotChunk& chunk, size_t j) {
+                   sample_dielectric_chunk(ctx, state, chunk, hits, j);
+                 });
   for (size_t k = 0; k < n_hits; ++k) {
     const uint32_t s = q.surface[k];
     const Vec3 d = state.direction(s);
@@ -323,8 +341,9 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       bs = sample_opaque(info, wo_local, r, &reflectance);
       wi = frame.to_world(bs.wi);
     } else {
-      bs = batched_sample(hits, k);
-      wi = {hits.wx[k], hits.wy[k], hits.wz[k]};
+      const uint32_t j = hits.bucket_of[k];
+      bs = batched_sample(hits, j);
+      wi = {hits.wx[j], hits.wy[j], hits.wz[j]};
     }
     if (!bs.valid || bs.pdf <= 0 || bs.f <= 0 ||
         (info.smooth_shading && !shading_sides_agree(-d, wi, n, ns))) {

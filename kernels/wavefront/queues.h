@@ -136,18 +136,28 @@ inline constexpr uint32_t kSurfaceSampleValid = 1, kSurfaceSampleTransmission = 
 struct SurfaceResults {
   explicit SurfaceResults(size_t capacity) {
     for (AlignedArray<float>* a :
-         {&px, &py, &pz, &nx,        &ny, &nz,  &snx,      &sny,      &snz,      &eta,       &alpha,
-          &wx, &wy, &wz, &cos_local, &f,  &pdf, &u_light0, &u_light1, &u_light2, &u_roulette})
+         {&px,         &py,         &pz,         &nx,         &ny,         &nz,           &snx,
+          &sny,        &snz,        &eta,        &alpha,      &u_light0,   &u_light1,     &u_light2,
+          &u_roulette, &bucket_snx, &bucket_sny, &bucket_snz, &bucket_eta, &bucket_alpha, &wx,
+          &wy,         &wz,         &cos_local,  &f,          &pdf})
       *a = AlignedArray<float>(padded_capacity(capacity));
-    for (AlignedArray<uint32_t>* a : {&light_sampled, &flags})
+    for (AlignedArray<uint32_t>* a : {&light_sampled, &bucket_slots, &bucket_of, &flags})
       *a = AlignedArray<uint32_t>(padded_capacity(capacity));
   }
-  // n: the outward geometric normal; sn: the shading normal (n itself on flat surfaces), the
-  // frame the dielectric is sampled in.
-  AlignedArray<float> px, py, pz, nx, ny, nz, snx, sny, snz, eta, alpha, wx, wy, wz, cos_local, f,
-      pdf;
+  // By queue position. n: the outward geometric normal; sn: the shading normal (n itself on
+  // flat surfaces), the frame the dielectric is sampled in.
+  AlignedArray<float> px, py, pz, nx, ny, nz, snx, sny, snz, eta, alpha;
   AlignedArray<float> u_light0, u_light1, u_light2, u_roulette;
   AlignedArray<uint32_t> light_sampled;  // 1 where the per-slot pass may sample a light
+
+  // The dielectric bucket: the entries whose surface is a dielectric, in queue order, which
+  // alone get the batched BSDF sample (no lane samples a dielectric for a diffuse hit).
+  size_t bucket_size = 0;
+  AlignedArray<uint32_t> bucket_slots;  // their slots
+  AlignedArray<uint32_t> bucket_of;     // by queue position: the entry's index in the bucket
+  // By bucket index: the sample's inputs (shading normal, interface) and its results.
+  AlignedArray<float> bucket_snx, bucket_sny, bucket_snz, bucket_eta, bucket_alpha;
+  AlignedArray<float> wx, wy, wz, cos_local, f, pdf;
   AlignedArray<uint32_t> flags;
 };
 
