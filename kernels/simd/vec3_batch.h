@@ -66,9 +66,5 @@ inline void store_aligned(const Vec3Batch& v, float* x, float* y, float* z) {
 inline Vec3Batch select(BoolBatch m, const Vec3Batch& a, const Vec3Batch& b) {
   return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
 }
-// xsimd 8.1 selects between value batches only.
-inline BoolBatch select(BoolBatch m, BoolBatch a, BoolBatch b) {
-  return (m && a) || (!m && b);
-}
 
 }  // namespace snee::simd

@@ -237,10 +237,9 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
   SurfaceResults& hits = q.surfaces;
   const size_t n_hits = q.surface.size();
   gather_hits(ctx, state, q.surface, hits);
-  for (size_t k = 0; k < n_hits; k += simd::kLanes) {
-    draw_chunk(ctx, state,
-               simd::SlotChunk(q.surface.begin() + k, std::min(simd::kLanes, n_hits - k)), hits, k);
-  }
+  for_each_chunk(q.surface.begin(), n_hits, [&](const simd::SlotChunk& chunk, size_t k) {
+    draw_chunk(ctx, state, chunk, hits, k);
+  });
   for_each_chunk(hits.bucket_slots.data(), hits.bucket_size, BatchedKernel::kSurfaceSamples,
                  counters, [&](const simd::SlotChunk& chunk, size_t j) {
                    sample_dielectric_chunk(ctx, state, chunk, hits, j);

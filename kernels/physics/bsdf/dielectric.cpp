@@ -30,11 +30,11 @@ Vec3 transmission_half_vector(Vec3 a, float eta_a, Vec3 b, float eta_b) {
   return hn.z < 0.0f ? -hn : hn;
 }
 
-// Whether the microfacet normal h faces w from w's side (the lobes' chi+ condition). Tested
-// before a lobe is evaluated: the straight-line lobes compute everything, and many pairs the
-// tracer evaluates one at a time fail here.
+// Whether the microfacet normal h faces w from w's side: the lobes' own chi+ test, written as
+// they write it (a NaN passes). Tested before a lobe is evaluated: the straight-line lobes
+// compute everything, and many pairs the tracer evaluates one at a time fail here.
 bool faces(Vec3 w, Vec3 h) {
-  return dot(w, h) * w.z > 0.0f;
+  return !(dot(w, h) * w.z <= 0.0f);
 }
 
 LobeValue rough_value(const DielectricParams& p, Vec3 wo, Vec3 wi) {
