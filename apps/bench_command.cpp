@@ -11,11 +11,12 @@
 #include "apps/bench_workloads.h"
 #include "apps/option_checks.h"
 #include "apps/resolution.h"
+#include "apps/simd_option.h"
 #include "apps/stats_json.h"
 #include "apps/thread_counts.h"
-#include "kernels/simd/arch.h"
 #include "kernels/wavefront/path_state.h"
 #include "scene/embree_scene.h"
+#include "scheduler/simd_dispatch.h"
 #include "scheduler/threading.h"
 
 namespace snee {
@@ -109,6 +110,10 @@ BenchCommand::BenchCommand(CLI::App& parent)
   c.add_option("--dragon", dragon_, "The Stanford dragon mesh (dragon_vrip.ply)")
       ->capture_default_str();
   c.add_option("--only", only_, "Comma-separated workload names to run (default: all)");
+  c.add_option("--simd", simd_,
+               "Comma-separated SIMD levels (sse4.2, avx2, avx512) or all: every run is measured "
+               "at each, and xsimd is its paths per CPU-second over the first's [default: the "
+               "widest this machine runs]");
 }
 
 int BenchCommand::run() const {
@@ -119,6 +124,8 @@ int BenchCommand::run() const {
   settings.resolution = *parse_resolution(quick_ && !given("--resolution") ? "16x16" : resolution_);
   settings.raw_rays = quick_ ? size_t{1} << 12 : size_t{1} << 18;
   settings.raw_repeats = quick_ ? 1 : 3;
+  const std::vector<SimdLevel> levels =
+      simd_.empty() ? std::vector<SimdLevel>{widest_simd_level()} : parse_simd_levels(simd_);
   set_flush_to_zero();
 
   BenchWorkloads set = bench_workloads(dragon_, !quick_);
@@ -135,10 +142,10 @@ int BenchCommand::run() const {
               settings.resolution.width, settings.resolution.height, settings.spp,
               settings.repeats);
   for (const int t : settings.threads) std::printf(" %d", t);
-  std::printf(
-      "\npath state: %zu bytes per slot (%zu for snee, with its vertex memory); SIMD width %zu "
-      "lanes (\"lanes\": occupancy of the batched kernels' lanes)\n",
-      PathState::bytes_per_slot(false), PathState::bytes_per_slot(true), simd::kLanes);
+  std::printf("\npath state: %zu bytes per slot (%zu for snee, with its vertex memory); SIMD",
+              PathState::bytes_per_slot(false), PathState::bytes_per_slot(true));
+  for (const SimdLevel level : levels) std::printf(" %s", simd_level_description(level).c_str());
+  std::printf(" (\"lanes\": occupancy of the batched kernels' lanes)\n");
 
   nlohmann::ordered_json workloads = nlohmann::ordered_json::array();
   for (BenchWorkload& w : set.workloads) {
@@ -148,16 +155,19 @@ int BenchCommand::run() const {
     result.workload = &w;
     result.spp = settings.spp * w.spp_factor;
     result.triangles = triangle_count(w.scene);
+    result.simd_levels = levels;
     {
       const EmbreeScene embree(w.scene);
       result.raw =
           measure_embree_throughput(w.scene, embree, settings.raw_rays, settings.raw_repeats);
     }
     for (const int threads : settings.threads) {
-      // The schedules' repeats are interleaved, so other work on a shared machine slows the
-      // compared schedules alike.
+      // The runs' repeats are interleaved, so other work on a shared machine slows the
+      // compared schedules and SIMD levels alike.
       std::vector<BenchRun> runs;
-      for (const char* schedule : kSchedules) runs.push_back({schedule, threads, 0, Measurement()});
+      for (const SimdLevel level : levels)
+        for (const char* schedule : kSchedules)
+          runs.push_back({schedule, threads, 0, level, Measurement()});
       for (int r = 0; r < settings.repeats; ++r) {
         for (BenchRun& run : runs) {
           RenderOptions o;
@@ -168,6 +178,7 @@ int BenchCommand::run() const {
           o.schedule = run.schedule;
           o.samples_per_unit = samples_per_unit_;
           o.queue_capacity = queue_capacity_;
+          o.simd = run.simd;
           run.queue_capacity = run.schedule == "megakernel" ? 1 : o.queue_capacity;
           run.measurement.repeat(w.scene, o);
         }
@@ -210,7 +221,12 @@ int BenchCommand::run() const {
           {"schedules", kSchedules}}},
         {"path_state_bytes_per_slot", PathState::bytes_per_slot(false)},
         {"path_state_bytes_per_slot_snee", PathState::bytes_per_slot(true)},
-        {"simd_width", simd::kLanes},
+        {"simd_levels",
+         [&] {
+           nlohmann::ordered_json names = nlohmann::ordered_json::array();
+           for (const SimdLevel level : levels) names.push_back(simd_level_name(level));
+           return names;
+         }()},
         {"skipped", set.skipped},
         {"workloads", workloads},
         {"memory_vs_spp", memory},

@@ -1,6 +1,6 @@
-// `snee bench`: renders the fixed workloads (bench_workloads.h) under every schedule and thread
-// count, measures raw Embree traversal on the same geometry, prints a table per workload and
-// optionally writes everything as JSON. docs/performance.md explains each figure.
+// `snee bench`: renders the fixed workloads (bench_workloads.h) under every schedule, thread
+// count and chosen SIMD level, measures raw Embree traversal on the same geometry, prints a table
+// per workload and optionally writes everything as JSON. docs/performance.md explains each figure.
 #pragma once
 
 #include <string>
@@ -31,6 +31,7 @@ class BenchCommand {
   std::string json_;
   std::string dragon_;
   std::string only_;
+  std::string simd_;
 };
 
 }  // namespace snee

@@ -81,9 +81,10 @@ Figures figures(const BenchRun& run, const EmbreeThroughput& raw) {
   return f;
 }
 
-const BenchRun* find_run(const BenchResult& r, const std::string& schedule, int threads) {
+const BenchRun* find_run(const BenchResult& r, const std::string& schedule, int threads,
+                         SimdLevel simd) {
   for (const BenchRun& run : r.runs) {
-    if (run.schedule == schedule && run.threads == threads) return &run;
+    if (run.schedule == schedule && run.threads == threads && run.simd == simd) return &run;
   }
   return nullptr;
 }
@@ -91,11 +92,21 @@ const BenchRun* find_run(const BenchResult& r, const std::string& schedule, int 
 // Paths per second of `schedule` over the megakernel's at the same thread count (wall clock
 // and CPU time); 0 when either is missing.
 std::array<double, 2> vs_megakernel(const BenchResult& r, const BenchRun& run) {
-  const BenchRun* mega = find_run(r, "megakernel", run.threads);
+  const BenchRun* mega = find_run(r, "megakernel", run.threads, run.simd);
   if (!mega) return {0, 0};
   const Figures a = figures(run, r.raw), b = figures(*mega, r.raw);
   return {b.paths_per_second > 0 ? a.paths_per_second / b.paths_per_second : 0,
           b.paths_per_cpu_second > 0 ? a.paths_per_cpu_second / b.paths_per_cpu_second : 0};
+}
+
+// Paths per CPU-second of a run over the same schedule's at the same thread count with the first
+// SIMD level measured: the speed-up of a wider SIMD level; 0 when that run is missing.
+double vs_first_simd_level(const BenchResult& r, const BenchRun& run) {
+  const BenchRun* first =
+      r.simd_levels.empty() ? nullptr : find_run(r, run.schedule, run.threads, r.simd_levels[0]);
+  if (!first) return 0;
+  const double base = figures(*first, r.raw).paths_per_cpu_second;
+  return base > 0 ? figures(run, r.raw).paths_per_cpu_second / base : 0;
 }
 
 nlohmann::ordered_json by_kind(const std::array<double, kRayKinds + 1>& v) {
@@ -129,29 +140,31 @@ void print_bench_result(std::FILE* out, const BenchResult& r) {
                    static_cast<double>(s.rays[k]) / paths);
     std::fprintf(out, "\n");
   }
-  std::fprintf(out, "   %-10s %3s %10s %11s %7s %8s %6s %6s %6s %6s %6s %6s %7s %6s %6s\n",
-               "schedule", "thr", "paths/s", "paths/cpu-s", "Mrays/s", "Mr/cpu-s", "cpu%", "%raw1",
-               "bound", "occup", "lanes", "batch", "RSS MiB", "xmega", "xm-cpu");
+  std::fprintf(out, "   %-10s %3s %-6s %10s %11s %7s %8s %6s %6s %6s %6s %6s %6s %7s %6s %6s %6s\n",
+               "schedule", "thr", "simd", "paths/s", "paths/cpu-s", "Mrays/s", "Mr/cpu-s", "cpu%",
+               "%raw1", "bound", "occup", "lanes", "batch", "RSS MiB", "xmega", "xm-cpu", "xsimd");
   for (const BenchRun& run : r.runs) {
     const Figures f = figures(run, r.raw);
     const auto ratio = vs_megakernel(r, run);
     std::fprintf(out,
-                 "   %-10s %3d %10.0f %11.0f %7.2f %8.2f %5.0f%% %5.0f%% %5.0f%% %6.3f %6.3f %6.0f "
-                 "%7.1f %6.2f %6.2f\n",
-                 run.schedule.c_str(), run.threads, f.paths_per_second, f.paths_per_cpu_second,
-                 f.mrays[kRayKinds], f.mrays_cpu[kRayKinds], 100 * f.cpu_share,
-                 100 * f.vs_closest_single, 100 * f.traversal_bound,
-                 run.measurement.median().queue_occupancy,
+                 "   %-10s %3d %-6s %10.0f %11.0f %7.2f %8.2f %5.0f%% %5.0f%% %5.0f%% %6.3f %6.3f "
+                 "%6.0f %7.1f %6.2f %6.2f %6.2f\n",
+                 run.schedule.c_str(), run.threads, std::string(simd_level_name(run.simd)).c_str(),
+                 f.paths_per_second, f.paths_per_cpu_second, f.mrays[kRayKinds],
+                 f.mrays_cpu[kRayKinds], 100 * f.cpu_share, 100 * f.vs_closest_single,
+                 100 * f.traversal_bound, run.measurement.median().queue_occupancy,
                  run.measurement.median().all_simd_lanes().occupancy(), f.extend_batch,
-                 run.measurement.peak_memory_mib(), ratio[0], ratio[1]);
+                 run.measurement.peak_memory_mib(), ratio[0], ratio[1],
+                 vs_first_simd_level(r, run));
   }
-  std::fprintf(out, "   stage time, %% of thread time (threads x wall clock)\n   %-10s %3s",
-               "schedule", "thr");
+  std::fprintf(out, "   stage time, %% of thread time (threads x wall clock)\n   %-10s %3s %-6s",
+               "schedule", "thr", "simd");
   for (int i = 0; i < kStages; ++i) std::fprintf(out, " %8s", stage_label(static_cast<Stage>(i)));
   std::fprintf(out, " %8s\n", "other");
   for (const BenchRun& run : r.runs) {
     const Figures f = figures(run, r.raw);
-    std::fprintf(out, "   %-10s %3d", run.schedule.c_str(), run.threads);
+    std::fprintf(out, "   %-10s %3d %-6s", run.schedule.c_str(), run.threads,
+                 std::string(simd_level_name(run.simd)).c_str());
     for (int i = 0; i < kStages; ++i) std::fprintf(out, " %7.1f%%", 100 * f.stage_share[i]);
     if (f.other_share)
       std::fprintf(out, " %7.1f%%\n", 100 * *f.other_share);
@@ -161,8 +174,9 @@ void print_bench_result(std::FILE* out, const BenchResult& r) {
   }
   for (const BenchRun& run : r.runs) {
     for (const std::string& warning : figures(run, r.raw).check.warnings)
-      std::fprintf(stderr, "warning: %s, %s, %d thread(s): %s\n", w.name.c_str(),
-                   run.schedule.c_str(), run.threads, warning.c_str());
+      std::fprintf(stderr, "warning: %s, %s, %d thread(s), %s: %s\n", w.name.c_str(),
+                   run.schedule.c_str(), run.threads,
+                   std::string(simd_level_name(run.simd)).c_str(), warning.c_str());
   }
 }
 
@@ -188,6 +202,8 @@ nlohmann::ordered_json bench_result_json(const BenchResult& r) {
     runs.push_back({
         {"schedule", run.schedule},
         {"threads", run.threads},
+        {"simd_level", simd_level_name(run.simd)},
+        {"vs_first_simd_level", {{"paths_per_cpu_second", vs_first_simd_level(r, run)}}},
         {"seconds", f.seconds},
         {"cpu_seconds", f.cpu_seconds},
         {"cpu_share", f.cpu_share},

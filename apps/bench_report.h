@@ -1,4 +1,5 @@
-// What `snee bench` reports for one workload: the measured runs (schedule x threads) with the
+// What `snee bench` reports for one workload: the measured runs (schedule x threads x SIMD
+// level) with the
 // figures derived from them, as a table for people and as JSON for scripts and CI.
 #pragma once
 
@@ -18,6 +19,7 @@ struct BenchRun {
   std::string schedule;
   int threads = 0;
   int queue_capacity = 0;  // path slots per work unit (1 for the megakernel)
+  SimdLevel simd = SimdLevel::kSse42;
   Measurement measurement;
 };
 
@@ -27,6 +29,9 @@ struct BenchResult {
   size_t triangles = 0;
   EmbreeThroughput raw;  // the traversal limit on the same geometry
   std::vector<BenchRun> runs;
+  // The levels measured, in the order --simd gave them; speed-ups per width are against the
+  // first.
+  std::vector<SimdLevel> simd_levels;
 };
 
 void print_bench_result(std::FILE* out, const BenchResult& result);

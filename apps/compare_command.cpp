@@ -17,6 +17,7 @@
 #include "apps/output_files.h"
 #include "apps/progress_bar.h"
 #include "apps/resolution.h"
+#include "apps/simd_option.h"
 #include "apps/stats_json.h"
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
@@ -145,6 +146,7 @@ CompareCommand::CompareCommand(CLI::App& parent)
   c.add_option("--threads", threads_, "Worker threads, 0 = all")
       ->check(integer_at_least(0))
       ->capture_default_str();
+  add_simd_option(c, simd_);
   c.add_option("--seed", seed_, "Seed of the compared renders")->capture_default_str();
   c.add_option("-o,--output", output_, "Output directory")->default_str("out/compare-<scene>");
   c.add_option("--font", font_,
@@ -173,6 +175,7 @@ int CompareCommand::run() const {
   RenderOptions base;
   base.threads = capped_threads(threads_);
   base.seed = seed_;
+  base.simd = simd_;
   base.max_depth = scene.render.max_depth;
   base.light_selection = light_selection_.empty() ? scene.render.light_selection
                                                   : *parse_light_selection(light_selection_);

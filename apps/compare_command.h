@@ -4,10 +4,13 @@
 // writes each render, the reference, a JSON report and a contact sheet (apps/contact_sheet.h).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+
+#include "kernels/simd/simd_level.h"
 
 namespace snee {
 
@@ -31,6 +34,7 @@ class CompareCommand {
   std::string resolution_;
   std::string light_selection_;  // empty: the scene's
   int threads_ = 0;
+  std::optional<SimdLevel> simd_;
   uint32_t seed_ = 1;
   std::string output_;
   std::string font_;

@@ -11,10 +11,11 @@
 #include "apps/render_command.h"
 #include "apps/scale_command.h"
 #include "apps/scenes_command.h"
+#include "apps/simd_option.h"
 
 int main(int argc, char** argv) {
   CLI::App app("snee: a CPU renderer for translucent objects", "snee");
-  app.set_version_flag("--version", "snee " SNEE_VERSION);
+  app.set_version_flag("--version", snee::version_text);
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "error: " + std::string(e.what()) + "\nrun 'snee --help' or 'snee COMMAND --help'\n";

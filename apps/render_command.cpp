@@ -19,6 +19,7 @@
 #include "apps/render_settings.h"
 #include "apps/resolution.h"
 #include "apps/sample_counts.h"
+#include "apps/simd_option.h"
 #include "apps/stats_json.h"
 #include "scene/aov_selection.h"
 #include "scene/scene_loader.h"
@@ -86,6 +87,7 @@ RenderCommand::RenderCommand(CLI::App& parent)
                    ? std::string()
                    : std::string("the output must end in ") + kOutputExtensions + ": " + path;
       });
+  add_simd_option(c, options_.simd);
   c.add_option("--stats", stats_, "Also write render statistics as JSON to this file");
   c.add_flag("--stats-tiles", stats_tiles_,
              "With --stats: also each tile's seconds of thread time (tile_seconds, raster order), "
@@ -413,10 +415,11 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   write_images(result.film, images);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result, stats_tiles_), stats_);
   if (result.complete) {
-    std::printf("rendered %s: %s, %dx%d, %s, %.2f s, %.1f Mrays/s\n", name.c_str(),
+    std::printf("rendered %s: %s, %dx%d, %s, %.2f s, %.1f Mrays/s, %s\n", name.c_str(),
                 options.integrator.c_str(), result.film.width, result.film.height,
                 samples_summary(result, options.spp).c_str(), result.stats.seconds,
-                result.stats.mrays_per_second());
+                result.stats.mrays_per_second(),
+                std::string(simd_level_name(result.stats.simd_level)).c_str());
   } else {
     std::printf(
         "interrupted %s after %llu of %lld pixel samples (every pixel has at least %d "

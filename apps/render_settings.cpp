@@ -6,8 +6,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "apps/simd_option.h"
 #include "apps/stats_json.h"
-#include "kernels/simd/arch.h"
 
 namespace snee {
 namespace {
@@ -99,8 +99,7 @@ ExrAttributes render_settings_attributes(const std::string& scene_spec, const Lo
                                                : " of the bytes of " + scene_spec)},
       {"snee:render_options", render_options.dump()},
       {"snee:sample_clamp", clamp},
-      {"snee:build_simd",
-       std::string(simd::Arch::name()) + ", " + std::to_string(simd::kLanes) + " float lanes"},
+      {"snee:simd", simd_choice_text(options.simd)},
   };
 }
 

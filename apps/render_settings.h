@@ -26,7 +26,8 @@ std::string command_line();
 
 // snee:command_line, snee:scene_hash ("fnv1a64:HEX of <what was hashed>": a scene file's
 // bytes, a built-in scene's canonical JSON document), snee:render_options (JSON),
-// snee:sample_clamp ("off" or the value, marked biased) and snee:build_simd.
+// snee:sample_clamp ("off" or the value, marked biased) and snee:simd (the SIMD level that
+// renders and why).
 ExrAttributes render_settings_attributes(const std::string& scene_spec, const LoadedScene& loaded,
                                          const RenderOptions& options, const ToneMap& tone);
 

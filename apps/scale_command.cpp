@@ -11,6 +11,7 @@
 #include "apps/measure_render.h"
 #include "apps/resolution.h"
 #include "apps/scale_plot.h"
+#include "apps/simd_option.h"
 #include "apps/stats_json.h"
 #include "apps/thread_counts.h"
 #include "scene/scene_loader.h"
@@ -49,6 +50,7 @@ ScaleCommand::ScaleCommand(CLI::App& parent)
       ->check(resolution_validator());
   c.add_option("--integrator", integrator_, "pt, snee or sla [default: the scene's]")
       ->check(CLI::IsMember({"pt", "snee", "sla"}));
+  add_simd_option(c, simd_);
   c.add_option("--schedule", schedule_, "megakernel, local or global")
       ->check(CLI::IsMember({"megakernel", "local", "global"}))
       ->capture_default_str();
@@ -71,11 +73,14 @@ int ScaleCommand::run() const {
   options.max_depth = scene.render.max_depth;
   options.integrator = given("--integrator") ? integrator_ : scene.render.integrator;
   options.schedule = schedule_;
+  options.simd = simd_;
   const std::vector<int> threads = capped_thread_counts(*parse_thread_counts(threads_));
 
-  std::printf("snee scale %s: %s, %s schedule, %dx%d, %d spp, %d repeat(s), %u hardware threads\n",
-              scene_.c_str(), options.integrator.c_str(), schedule_.c_str(), scene.camera.width,
-              scene.camera.height, options.spp, repeats_, std::thread::hardware_concurrency());
+  std::printf(
+      "snee scale %s: %s, %s schedule, %dx%d, %d spp, %d repeat(s), %u hardware threads, %s\n",
+      scene_.c_str(), options.integrator.c_str(), schedule_.c_str(), scene.camera.width,
+      scene.camera.height, options.spp, repeats_, std::thread::hardware_concurrency(),
+      simd_choice_text(simd_).c_str());
   // Repeats are interleaved over the thread counts, so a burst of other work on the machine
   // does not land on one count alone.
   std::vector<Measurement> measurements(threads.size());

@@ -4,9 +4,12 @@
 // same work.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "kernels/simd/simd_level.h"
 
 namespace snee {
 
@@ -22,6 +25,7 @@ class ScaleCommand {
   CLI::App* command_;
   std::string scene_ = "builtin:bunny-cone-r0.04";
   std::string threads_ = "1,2";
+  std::optional<SimdLevel> simd_;
   int repeats_ = 3;
   int spp_ = 16;
   std::string resolution_;

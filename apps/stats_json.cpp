@@ -32,7 +32,8 @@ nlohmann::ordered_json simd_lanes_json(const RenderStats& stats) {
   nlohmann::ordered_json kernels = nlohmann::ordered_json::object();
   for (int k = 0; k < kBatchedKernels; ++k)
     kernels[batched_kernel_name(static_cast<BatchedKernel>(k))] = lanes(stats.simd_lanes[k]);
-  return {{"width", stats.simd_width},
+  return {{"level", simd_level_name(stats.simd_level)},
+          {"width", stats.simd_width},
           {"lane_occupancy", stats.all_simd_lanes().occupancy()},
           {"kernels", kernels}};
 }

@@ -1,18 +1,19 @@
 // The few operations the physics needs beyond + - * / and comparisons, for code written once
 // over its lane type F: float for the scalar functions, an xsimd float batch for the batched
 // kernels (kernels/simd/), double where a test oracle wants one. A lane-generic function brings
-// them in with `using namespace lane;` and calls select, sqrt, abs, exp and log1p unqualified: the
+// them in with `using namespace lane;` and calls select, sqrt and abs unqualified: the
 // scalar overloads here are found by ordinary lookup, xsimd's by argument-dependent lookup on the
 // batch, so this header needs no xsimd and snee_physics stays free of it. Both sides of a
 // select are computed; the scalar overloads give exactly what the branch they replace gave,
 // since every operation here is exact or correctly rounded.
 //
-// What xsimd lacks or gets wrong for the renderer (a sign-exact negation, a sincos whose lanes
-// do not depend on each other), and what a lane's 3-vector is, goes through the trait ops<F>,
-// which kernels/simd/lane_batch.h specialises for the batch: a template cannot reach a helper in
-// snee::simd by argument-dependent lookup, but it does see a specialisation declared before it
-// is instantiated. A type without one is not a lane type (`Lane`), so the templates below never
-// capture a call with double arguments that used to convert to the float function.
+// What xsimd lacks or gets wrong for the renderer (a sign-exact negation; exp, log1p and sincos
+// that round alike at every SIMD width and whose lanes do not depend on each other), and what a
+// lane's 3-vector is, goes through the trait ops<F>, which kernels/simd/lane_batch.h specialises
+// for the batch: a template cannot reach a helper in snee::simd by argument-dependent lookup, but
+// it does see a specialisation declared before it is instantiated. A type without one is not a lane
+// type (`Lane`), so the templates below never capture a call with double arguments that used to
+// convert to the float function.
 #pragma once
 
 #include <algorithm>
@@ -36,13 +37,6 @@ inline double sqrt(double x) {
 
 inline float abs(float x) {
   return std::fabs(x);
-}
-
-inline float exp(float x) {
-  return std::exp(x);
-}
-inline float log1p(float x) {
-  return std::log1p(x);
 }
 
 // Selection between masks (bool, or a batch of booleans, which xsimd's select does not take).
@@ -75,6 +69,8 @@ struct ops<float> {
   static constexpr bool is_lane = true;
   static float neg(float x) { return -x; }
   static float copysign(float magnitude, float sign) { return std::copysign(magnitude, sign); }
+  static float exp(float x) { return std::exp(x); }
+  static float log1p(float x) { return std::log1p(x); }
   // libm's sine and cosine, as the scalar functions always called them.
   static std::pair<float, float> sincos(float x) { return {std::sin(x), std::cos(x)}; }
   static std::pair<float, float> libm_sincos(float x) { return sincos(x); }
@@ -91,6 +87,16 @@ F neg(F x) {
 template <Lane F>
 F copysign(F magnitude, F sign) {
   return ops<F>::copysign(magnitude, sign);
+}
+// Call these two qualified (lane::exp): unqualified, argument-dependent lookup would also find
+// xsimd's own for a batch, which rounds differently from one SIMD width to another.
+template <Lane F>
+F exp(F x) {
+  return ops<F>::exp(x);
+}
+template <Lane F>
+F log1p(F x) {
+  return ops<F>::log1p(x);
 }
 // {sin x, cos x}.
 template <Lane F>

@@ -17,6 +17,7 @@
 #include "kernels/stages/first_hit_aovs.h"
 #include "scene/embree_scene.h"
 #include "scheduler/schedule.h"
+#include "scheduler/simd_backend.h"
 #include "scheduler/threading.h"
 #include "scheduler/unit_schedules.h"
 #include "scheduler/work_unit.h"
@@ -149,8 +150,8 @@ ShortestFreePath shortest_free_path(const Scene& scene, float clearance) {
   return shortest;
 }
 
-RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks,
-                    const FilmState* resume) {
+RenderResult render_compiled_level(const Scene& scene, const RenderOptions& options,
+                                   const RenderHooks& hooks, const FilmState* resume) {
   validate(scene, options, hooks, resume);
   const Integrator requested = parse_integrator(options.integrator);
   // SNEE pays only for lights that unidirectional sampling rarely finds (docs/method.md 3.11).
@@ -281,6 +282,7 @@ RenderResult render(const Scene& scene, const RenderOptions& options, const Rend
   stats.smallest_light_degrees = smallest_light;
   stats.shortest_free_path = shortest_free_path(scene, embree.ray_epsilon());
   stats.simd_lanes = counters.lanes;
+  stats.simd_level = kCompiledSimdLevel;
   stats.simd_width = simd::kLanes;
   film.meta.render_seconds = stats.seconds;
   film.meta.nonfinite_samples = stats.nonfinite_samples;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "kernels/physics/snee/snee_options.h"
+#include "kernels/simd/simd_level.h"
 #include "kernels/stages/stage_table.h"
 #include "kernels/wavefront/kernel_context.h"
 #include "kernels/wavefront/snee_counters.h"
@@ -73,6 +74,9 @@ struct RenderOptions {
   // The film, sample buffers and workspaces together must fit, or render() refuses before
   // allocating any of them.
   MemoryBudget memory_budget;
+  // The SIMD level whose kernels render (scheduler/simd_dispatch.h); unset: the widest this
+  // machine can use. The image is bitwise the same at every level.
+  std::optional<SimdLevel> simd;
 };
 
 struct Progress {
@@ -165,7 +169,8 @@ struct RenderStats {
   // wider than the limit.
   StrategySet snee_strategies;
   std::array<LaneCount, kBatchedKernels> simd_lanes{};  // by BatchedKernel
-  size_t simd_width = 0;                                // lanes per SIMD batch in this build
+  SimdLevel simd_level = SimdLevel::kSse42;             // whose kernels rendered
+  size_t simd_width = 0;                                // lanes per SIMD batch at that level
   size_t path_state_bytes_per_slot = 0;
   int threads = 0;
   uint64_t tiles_rendered = 0;  // tiles at least one unit of which ran in this render
@@ -191,9 +196,10 @@ struct RenderResult {
   std::optional<FilmState> state;
 };
 
-// Throws std::invalid_argument for an unknown integrator or invalid options, and when the render
-// would need more memory than options.memory_budget. What a hook throws aborts the render and
-// propagates, so a caller that wants to go on catches it there. With `resume` (a state that a
+// Runs the kernels of options.simd (scheduler/simd_dispatch.cpp). Throws std::invalid_argument
+// for an unknown integrator, a SIMD level this machine cannot use, or invalid options, and when the
+// render would need more memory than options.memory_budget. What a hook throws aborts the render
+// and propagates, so a caller that wants to go on catches it there. With `resume` (a state that a
 // render of the same scene and image-shaping options left, RenderHooks::checkpoint_state) the
 // render goes on from it: the units its tiles hold are skipped, and the film ends bitwise the
 // one the uninterrupted render makes. Its spp may be larger than the state's render's, when

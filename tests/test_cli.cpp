@@ -6,6 +6,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -14,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -23,6 +25,7 @@
 #include "scene/film.h"
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
+#include "scheduler/simd_dispatch.h"
 #include "tests/support/command_line.h"
 #include "tests/support/test_directory.h"
 
@@ -82,7 +85,7 @@ TEST_F(CliTest, RenderHelpListsEveryOption) {
   for (const char* option :
        {"SCENE", "builtin:", "--spp", "--threads", "--seed", "--integrator", "-o", "--output",
         "--stats", "--resolution", "--max-depth", "--queue-capacity", "--tile-size",
-        "--samples-per-unit", "--schedule", "--checkpoint", "--quiet"})
+        "--samples-per-unit", "--schedule", "--checkpoint", "--quiet", "--simd"})
     EXPECT_TRUE(contains(run.output, option)) << option << " missing from:\n" << run.output;
 }
 
@@ -96,6 +99,57 @@ TEST_F(CliTest, TopLevelHelpAndVersion) {
   const Outcome version = snee("--version");
   EXPECT_EQ(version.exit_code, 0) << version.output;
   EXPECT_TRUE(contains(version.output, SNEE_VERSION)) << version.output;
+  // The level that renders by default, and every level's standing here.
+  EXPECT_TRUE(contains(version.output, "SIMD: " + simd_level_description(widest_simd_level()) +
+                                           ", the widest this machine runs"))
+      << version.output;
+  for (const SimdLevelStatus& s : simd_levels()) {
+    EXPECT_TRUE(contains(version.output, std::string(simd_level_name(s.level)) + " "))
+        << version.output;
+    EXPECT_TRUE(contains(version.output, s.detail)) << version.output;
+  }
+}
+
+// --simd forces a level: the run says which one rendered (console, stats JSON, EXR metadata),
+// and the pixels are the same at every level this machine can use.
+TEST_F(CliTest, SimdOptionForcesALevelThatRendersTheSamePixels) {
+  std::vector<float> first;
+  for (const SimdLevelStatus& s : simd_levels()) {
+    if (!s.usable) continue;
+    const std::string name(simd_level_name(s.level));
+    const Outcome run = snee(
+        "render builtin:sphere-cone-r0.04 --integrator snee --spp 2 "
+        "--resolution 16x12 -o " +
+        name + ".exr --stats " + name + ".json --simd " + name);
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "Mrays/s, " + name + "\n")) << run.output;
+    const auto stats = nlohmann::json::parse(read_file(dir_ / (name + ".json")));
+    EXPECT_EQ(stats["simd"]["level"], name);
+    EXPECT_EQ(stats["simd"]["width"], simd_level_lanes(s.level));
+    auto in = OIIO::ImageInput::open(path(name + ".exr"));
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_string_attribute("snee:simd"),
+              simd_level_description(s.level) + ", forced by --simd");
+    const Film film = read_exr(path(name + ".exr"));
+    std::vector<float> pixels;
+    for (const Rgb& p : film.mean) pixels.insert(pixels.end(), {p.x, p.y, p.z});
+    if (first.empty()) {
+      first = pixels;
+    } else {
+      EXPECT_EQ(std::memcmp(first.data(), pixels.data(), first.size() * sizeof(float)), 0) << name;
+    }
+  }
+  EXPECT_FALSE(first.empty());
+}
+
+TEST_F(CliTest, AnUnknownSimdLevelIsAUsageError) {
+  const Outcome run = snee("render builtin:default --spp 1 --simd avx");
+  EXPECT_NE(run.exit_code, 0) << run.output;
+  EXPECT_TRUE(contains(run.output, "the SIMD level must be sse4.2, avx2 or avx512: avx"))
+      << run.output;
+  const Outcome bench = snee("bench --quick --simd sse4.2,neon");
+  EXPECT_NE(bench.exit_code, 0) << bench.output;
+  EXPECT_TRUE(contains(bench.output, "not 'neon'")) << bench.output;
 }
 
 TEST_F(CliTest, NoSubcommandIsAnError) {

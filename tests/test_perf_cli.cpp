@@ -58,9 +58,13 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
   expect_keys(
       b,
       {"version", "date", "machine", "settings", "path_state_bytes_per_slot",
-       "path_state_bytes_per_slot_snee", "simd_width", "skipped", "workloads", "memory_vs_spp"},
+       "path_state_bytes_per_slot_snee", "simd_levels", "skipped", "workloads", "memory_vs_spp"},
       "bench");
   EXPECT_GT(b["path_state_bytes_per_slot"].get<int>(), 0);
+  // One SIMD level by default: the widest this machine runs.
+  ASSERT_EQ(b["simd_levels"].size(), 1u);
+  const std::string level = b["simd_levels"][0];
+  const size_t width = level == "sse4.2" ? 4 : level == "avx2" ? 8 : 16;
   // SNEE's vertex memory is allocated only for snee.
   EXPECT_GT(b["path_state_bytes_per_slot_snee"].get<int>(),
             b["path_state_bytes_per_slot"].get<int>());
@@ -79,22 +83,40 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
     for (const auto& run : w["runs"]) {
       const std::string where = name + " " + run["schedule"].get<std::string>();
       expect_keys(run,
-                  {"threads", "seconds", "cpu_seconds", "cpu_share", "repeat_seconds", "paths",
-                   "paths_per_second", "paths_per_cpu_second", "rays", "mrays_per_second",
-                   "mrays_per_cpu_second", "ratio_to_raw_embree", "vs_megakernel", "stages",
-                   "queue_capacity", "queue_occupancy", "simd", "path_state_bytes_per_slot",
+                  {"threads",
+                   "seconds",
+                   "cpu_seconds",
+                   "cpu_share",
+                   "repeat_seconds",
+                   "paths",
+                   "paths_per_second",
+                   "paths_per_cpu_second",
+                   "rays",
+                   "mrays_per_second",
+                   "mrays_per_cpu_second",
+                   "ratio_to_raw_embree",
+                   "vs_megakernel",
+                   "stages",
+                   "simd_level",
+                   "vs_first_simd_level",
+                   "queue_capacity",
+                   "queue_occupancy",
+                   "simd",
+                   "path_state_bytes_per_slot",
                    "peak_memory_mib"},
                   where);
       // Every path starts in the batched camera kernel, so lanes ran and some held a slot; a
       // one-slot megakernel unit fills one lane of each batch, except when subdivision weighs
       // one exit's two proposals (TB and BT) in one batch.
       const auto& lanes = run["simd"];
-      EXPECT_EQ(lanes["width"], b["simd_width"]) << where;
+      EXPECT_EQ(run["simd_level"], level) << where;
+      EXPECT_EQ(lanes["level"], level) << where;
+      EXPECT_EQ(lanes["width"].get<size_t>(), width) << where;
       const double occupancy = lanes["lane_occupancy"].get<double>();
       EXPECT_GT(occupancy, 0.0) << where;
       EXPECT_LE(occupancy, 1.0) << where;
       if (run["schedule"] == "megakernel") {
-        const double one_lane = 1.0 / b["simd_width"].get<double>();
+        const double one_lane = 1.0 / static_cast<double>(width);
         for (const auto& [kernel, k] : lanes["kernels"].items()) {
           if (k["lanes_run"].get<double>() == 0) continue;  // a stage this workload never ran
           if (kernel == "subdivision_weights") {
@@ -112,6 +134,31 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
     }
   }
   EXPECT_EQ(b["memory_vs_spp"]["runs"].size(), 2u);
+}
+
+// --simd all measures every run at every usable level, each against the first (xsimd): the
+// speed-up per SIMD width, with the level in the table and the JSON.
+TEST_F(PerfCli, BenchMeasuresEveryRunAtEverySimdLevel) {
+  ASSERT_EQ(snee("bench --quick --only sphere-pt --threads 1 --simd all --json s.json"), 0)
+      << output_;
+  const nlohmann::json b = json("s.json");
+  ASSERT_GE(b["simd_levels"].size(), 1u);
+  EXPECT_EQ(b["simd_levels"][0], "sse4.2");
+  const auto& runs = b["workloads"][0]["runs"];
+  ASSERT_EQ(runs.size(), 3 * b["simd_levels"].size());  // schedules x levels
+  for (const auto& run : runs) {
+    const std::string where =
+        run["schedule"].get<std::string>() + " " + run["simd_level"].get<std::string>();
+    EXPECT_EQ(run["simd"]["level"], run["simd_level"]) << where;
+    EXPECT_NE(output_.find(run["simd_level"].get<std::string>()), std::string::npos) << where;
+    const double speedup = run["vs_first_simd_level"]["paths_per_cpu_second"].get<double>();
+    if (run["simd_level"] == "sse4.2") {
+      EXPECT_DOUBLE_EQ(speedup, 1.0) << where;
+    } else {
+      EXPECT_GT(speedup, 0.0) << where;
+    }
+  }
+  EXPECT_NE(output_.find("xsimd"), std::string::npos) << output_;
 }
 
 // A 16x16, 1 spp run samples for milliseconds, far under a second: whatever the machine, the

@@ -22,6 +22,7 @@
 #include "apps/mpi/tile_counter.h"
 #include "apps/option_checks.h"
 #include "apps/render_command.h"
+#include "apps/simd_option.h"
 
 namespace {
 
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
 
   CLI::App app("snee-mpi: snee render split across MPI processes", "snee-mpi");
-  app.set_version_flag("--version", "snee " SNEE_VERSION);
+  app.set_version_flag("--version", snee::version_text);
   app.require_subcommand(1);
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "error: " + std::string(e.what()) + "\nrun 'snee-mpi render --help'\n";

@@ -52,7 +52,7 @@ inline JointImportanceSampleBatch joint_importance_sample(const JointImportanceB
       xsimd::select(geometric, sin_gamma_geo, xsimd::sqrt(dot(w_cross_a, w_cross_a)));
   const FloatBatch cos_gamma = xsimd::select(geometric, neg(cos_pmg), dot(w, a));
   const FloatBatch pi_minus_gamma =
-      xsimd::select(geometric, pi_minus_gamma_geo, xsimd::atan2(sin_gamma, neg(cos_gamma)));
+      xsimd::select(geometric, pi_minus_gamma_geo, simd::atan2(sin_gamma, neg(cos_gamma)));
 
   // Equiangular step toward x_k along x_i + s w.
   const FloatBatch delta = d * cos_gamma, h = d * sin_gamma;

@@ -64,7 +64,7 @@ struct EquiangularBatch {
     delta = dot(v, w);
     const Vec3Batch p = sub(v, scale(w, delta));
     h = xsimd::sqrt(dot(p, p));
-    range = xsimd::atan2(h, neg(delta));
+    range = simd::atan2(h, neg(delta));
   }
   BoolBatch usable() const { return h > FloatBatch(0.0f) && range > FloatBatch(0.0f); }
   // equiangular_pdf at t.

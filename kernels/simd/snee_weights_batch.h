@@ -110,7 +110,7 @@ inline SuffixWeighing weigh_suffix(const SuffixBatch& s, const SneeOptions& opti
   // Bottom-to-top: probe, joint-importance placement of x_j, outward refraction.
   const Vec3Batch ij_cross_ik = cross(omega_ij, omega_ik);
   const FloatBatch sin_gamma = xsimd::sqrt(dot(ij_cross_ik, ij_cross_ik));
-  const FloatBatch pi_minus_gamma = xsimd::atan2(sin_gamma, neg(dot(omega_ij, omega_ik)));
+  const FloatBatch pi_minus_gamma = simd::atan2(sin_gamma, neg(dot(omega_ij, omega_ik)));
   const FloatBatch geometric = xsimd::select(s.g == zero, one, FloatBatch(options.c_joint));
   const FloatBatch inv_pi3(
       static_cast<float>(1.0 / (std::numbers::pi * std::numbers::pi * std::numbers::pi)));

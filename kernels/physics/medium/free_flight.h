@@ -21,13 +21,14 @@ namespace snee {
 // Each function is a template over the lane type F (core/lane_math.h), sigma_t and p being
 // the lane's 3-vectors, with a scalar form for float beside it. Both outcomes of every test are
 // computed and selected. exp and log1p are libm's for float and xsimd's polynomials for a
-// batch, so the two forms agree to a few ulp (kernels/simd/README.md), not bit for bit.
+// batch (kernels/simd/lane_batch.h), so the two forms agree to a few ulp (kernels/simd/README.md),
+// not bit for bit.
 
 // exp(-sigma d) with the convention 0 * inf = 0 (a clear channel over an infinite distance).
 template <lane::Lane F>
 F channel_transmittance(F sigma, F d) {
   using namespace lane;
-  return select(sigma > F(0.0f), exp(neg(sigma) * d), F(1.0f));
+  return select(sigma > F(0.0f), lane::exp(neg(sigma) * d), F(1.0f));
 }
 inline float channel_transmittance(float sigma, float d) {
   return channel_transmittance<float>(sigma, d);
@@ -48,7 +49,7 @@ inline constexpr float kThird = 1.0f / 3.0f;
 template <lane::Lane F>
 F exponential_distance(F sigma, F u) {
   using namespace lane;
-  return select(sigma > F(0.0f), neg(log1p(neg(u))) / sigma,
+  return select(sigma > F(0.0f), neg(lane::log1p(neg(u))) / sigma,
                 F(std::numeric_limits<float>::infinity()));
 }
 

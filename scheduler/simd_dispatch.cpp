@@ -1,0 +1,142 @@
+#include "scheduler/simd_dispatch.h"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+namespace snee {
+namespace {
+
+const SimdBackend kBuiltIn{.render = &render_compiled_level};
+
+// Where modules are looked for: beside the running program, in the lib/snee/ of the prefix it
+// is installed under, and in the build tree that made it (tests and apps run from there).
+std::vector<std::filesystem::path> module_directories() {
+  std::vector<std::filesystem::path> dirs;
+  std::error_code error;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    dirs.push_back(program.parent_path());
+    dirs.push_back(program.parent_path().parent_path() / "lib" / "snee");
+  }
+  dirs.emplace_back(SNEE_SIMD_MODULE_DIR);
+  return dirs;
+}
+
+// The loaded modules' backends, by level (the built-in one for the program's own level).
+std::vector<const SimdBackend*>& backends() {
+  static std::vector<const SimdBackend*> by_level(std::size(kSimdLevels), nullptr);
+  return by_level;
+}
+
+}  // namespace
+
+SimdModule load_simd_module(SimdLevel level,
+                            const std::vector<std::filesystem::path>& directories) {
+  SimdModule module;
+  SimdLevelStatus& status = module.status;
+  status.level = level;
+  const std::string file = "snee-simd-" + std::string(simd_level_name(level)) + ".so";
+  std::string looked;
+  for (const std::filesystem::path& dir : directories) {
+    const std::filesystem::path path = dir / file;
+    looked += (looked.empty() ? "" : ", ") + dir.string();
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(path, error)) continue;
+    // Never unloaded: its code may run until the process ends. RTLD_LOCAL keeps its symbols
+    // from ever resolving another object's references.
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle) {
+      status.detail = "module " + path.string() + " does not load: " + dlerror();
+      return module;
+    }
+    using Entry = const SimdBackend* (*)();
+    const auto entry = reinterpret_cast<Entry>(dlsym(handle, "snee_simd_backend"));
+    const SimdBackend* backend = entry ? entry() : nullptr;
+    if (!backend || backend->interface != kSimdBackendInterface ||
+        backend->layout != simd_backend_layout() || backend->level != level ||
+        std::string(backend->version) != SNEE_VERSION || !backend->render) {
+      status.detail = "module " + path.string() +
+                      " is from another build of snee (its interface, version or type layout "
+                      "differs from this program's); rebuild it with this one";
+      return module;
+    }
+    module.backend = backend;
+    status.usable = true;
+    status.detail = "module " + path.string();
+    return module;
+  }
+  status.detail = "not built: no " + file + " in " + looked;
+  return module;
+}
+
+namespace {
+
+std::vector<SimdLevelStatus> find_levels() {
+  std::vector<SimdLevelStatus> levels;
+  for (const SimdLevel level : kSimdLevels) {
+    SimdLevelStatus status{level, false, ""};
+    if (!cpu_runs(level)) {
+      status.detail = "this CPU lacks it";
+    } else if (level == kCompiledSimdLevel) {
+      status = {level, true, "built in"};
+      backends()[static_cast<size_t>(level)] = &kBuiltIn;
+    } else if (!SNEE_SIMD_DISPATCH) {
+      status.detail = "not built (this build has SIMD dispatch off: -DSNEE_SIMD_DISPATCH=OFF)";
+    } else {
+      const SimdModule module = load_simd_module(level, module_directories());
+      status = module.status;
+      backends()[static_cast<size_t>(level)] = module.backend;
+    }
+    levels.push_back(status);
+  }
+  return levels;
+}
+
+}  // namespace
+
+const std::vector<SimdLevelStatus>& simd_levels() {
+  static const std::vector<SimdLevelStatus> levels = find_levels();
+  return levels;
+}
+
+bool simd_modules_built() {
+  return SNEE_SIMD_DISPATCH;
+}
+
+SimdLevel widest_simd_level() {
+  SimdLevel widest = kCompiledSimdLevel;
+  for (const SimdLevelStatus& s : simd_levels())
+    if (s.usable) widest = s.level;
+  return widest;
+}
+
+const SimdBackend& simd_backend(SimdLevel level) {
+  const SimdLevelStatus& status = simd_levels()[static_cast<size_t>(level)];
+  if (!status.usable) {
+    std::string usable;
+    for (const SimdLevelStatus& s : simd_levels())
+      if (s.usable) usable += (usable.empty() ? "" : ", ") + std::string(simd_level_name(s.level));
+    throw std::invalid_argument("SIMD level " + std::string(simd_level_name(level)) +
+                                " cannot be used here (" + status.detail + "); usable: " + usable);
+  }
+  return *backends()[static_cast<size_t>(level)];
+}
+
+std::string simd_level_description(SimdLevel level) {
+  return std::string(simd_level_name(level)) + " (" + std::to_string(simd_level_lanes(level)) +
+         " float lanes)";
+}
+
+RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks,
+                    const FilmState* resume) {
+  const SimdLevel level = options.simd.value_or(widest_simd_level());
+  RenderResult result = simd_backend(level).render(scene, options, hooks, resume);
+  result.stats.simd_level = level;
+  return result;
+}
+
+}  // namespace snee
