@@ -124,8 +124,17 @@ int BenchCommand::run() const {
   settings.resolution = *parse_resolution(quick_ && !given("--resolution") ? "16x16" : resolution_);
   settings.raw_rays = quick_ ? size_t{1} << 12 : size_t{1} << 18;
   settings.raw_repeats = quick_ ? 1 : 3;
+  // Without --simd each schedule runs at its default level (simd_dispatch.h).
   const std::vector<SimdLevel> levels =
-      simd_.empty() ? std::vector<SimdLevel>{widest_simd_level()} : parse_simd_levels(simd_);
+      simd_.empty() ? std::vector<SimdLevel>{} : parse_simd_levels(simd_);
+  std::vector<SimdLevel> measured = levels;
+  if (levels.empty()) {
+    for (const char* schedule : kSchedules) {
+      const SimdLevel level = default_simd_level(schedule);
+      if (std::find(measured.begin(), measured.end(), level) == measured.end())
+        measured.push_back(level);
+    }
+  }
   set_flush_to_zero();
 
   BenchWorkloads set = bench_workloads(dragon_, !quick_);
@@ -165,6 +174,10 @@ int BenchCommand::run() const {
       // The runs' repeats are interleaved, so other work on a shared machine slows the
       // compared schedules and SIMD levels alike.
       std::vector<BenchRun> runs;
+      if (levels.empty()) {
+        for (const char* schedule : kSchedules)
+          runs.push_back({schedule, threads, 0, default_simd_level(schedule), Measurement()});
+      }
       for (const SimdLevel level : levels)
         for (const char* schedule : kSchedules)
           runs.push_back({schedule, threads, 0, level, Measurement()});
@@ -224,7 +237,7 @@ int BenchCommand::run() const {
         {"simd_levels",
          [&] {
            nlohmann::ordered_json names = nlohmann::ordered_json::array();
-           for (const SimdLevel level : levels) names.push_back(simd_level_name(level));
+           for (const SimdLevel level : measured) names.push_back(simd_level_name(level));
            return names;
          }()},
         {"skipped", set.skipped},

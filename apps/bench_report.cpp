@@ -81,10 +81,14 @@ Figures figures(const BenchRun& run, const EmbreeThroughput& raw) {
   return f;
 }
 
+// The run of a schedule and thread count at a SIMD level (any, without --simd: each schedule
+// ran at one level).
 const BenchRun* find_run(const BenchResult& r, const std::string& schedule, int threads,
                          SimdLevel simd) {
   for (const BenchRun& run : r.runs) {
-    if (run.schedule == schedule && run.threads == threads && run.simd == simd) return &run;
+    if (run.schedule == schedule && run.threads == threads &&
+        (run.simd == simd || r.simd_levels.empty()))
+      return &run;
   }
   return nullptr;
 }
@@ -100,10 +104,11 @@ std::array<double, 2> vs_megakernel(const BenchResult& r, const BenchRun& run) {
 }
 
 // Paths per CPU-second of a run over the same schedule's at the same thread count with the first
-// SIMD level measured: the speed-up of a wider SIMD level; 0 when that run is missing.
+// SIMD level measured: the speed-up of a wider SIMD level; 1 without --simd, 0 when that run is
+// missing.
 double vs_first_simd_level(const BenchResult& r, const BenchRun& run) {
-  const BenchRun* first =
-      r.simd_levels.empty() ? nullptr : find_run(r, run.schedule, run.threads, r.simd_levels[0]);
+  if (r.simd_levels.empty()) return 1;
+  const BenchRun* first = find_run(r, run.schedule, run.threads, r.simd_levels[0]);
   if (!first) return 0;
   const double base = figures(*first, r.raw).paths_per_cpu_second;
   return base > 0 ? figures(run, r.raw).paths_per_cpu_second / base : 0;

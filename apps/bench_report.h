@@ -29,8 +29,8 @@ struct BenchResult {
   size_t triangles = 0;
   EmbreeThroughput raw;  // the traversal limit on the same geometry
   std::vector<BenchRun> runs;
-  // The levels measured, in the order --simd gave them; speed-ups per width are against the
-  // first.
+  // The levels --simd gave, in its order; speed-ups per width are against the first. Empty
+  // without --simd: each schedule ran at its default level, and every speed-up is 1.
   std::vector<SimdLevel> simd_levels;
 };
 

@@ -99,7 +99,7 @@ ExrAttributes render_settings_attributes(const std::string& scene_spec, const Lo
                                                : " of the bytes of " + scene_spec)},
       {"snee:render_options", render_options.dump()},
       {"snee:sample_clamp", clamp},
-      {"snee:simd", simd_choice_text(options.simd)},
+      {"snee:simd", simd_choice_text(options.simd, options.schedule)},
   };
 }
 

@@ -80,7 +80,7 @@ int ScaleCommand::run() const {
       "snee scale %s: %s, %s schedule, %dx%d, %d spp, %d repeat(s), %u hardware threads, %s\n",
       scene_.c_str(), options.integrator.c_str(), schedule_.c_str(), scene.camera.width,
       scene.camera.height, options.spp, repeats_, std::thread::hardware_concurrency(),
-      simd_choice_text(simd_).c_str());
+      simd_choice_text(simd_, schedule_).c_str());
   // Repeats are interleaved over the thread counts, so a burst of other work on the machine
   // does not land on one count alone.
   std::vector<Measurement> measurements(threads.size());

@@ -46,17 +46,19 @@ std::vector<SimdLevel> parse_simd_levels(const std::string& list) {
   return levels;
 }
 
-SimdLevel chosen_simd_level(const std::optional<SimdLevel>& level) {
-  return level.value_or(widest_simd_level());
-}
-
-std::string simd_choice_text(const std::optional<SimdLevel>& level) {
-  return simd_level_description(chosen_simd_level(level)) +
-         (level ? ", forced by --simd" : ", the widest this machine runs");
+std::string simd_choice_text(const std::optional<SimdLevel>& level, const std::string& schedule) {
+  if (level) return simd_level_description(*level) + ", forced by --simd";
+  const SimdLevel chosen = default_simd_level(schedule);
+  return simd_level_description(chosen) + (chosen == widest_simd_level()
+                                               ? ", the widest this machine runs"
+                                               : ", the megakernel's default");
 }
 
 std::string version_text() {
-  std::string text = "snee " SNEE_VERSION "\nSIMD: " + simd_choice_text(std::nullopt) + "\n";
+  std::string text =
+      "snee " SNEE_VERSION "\nSIMD: " + simd_choice_text(std::nullopt, "local") +
+      " (the megakernel's: " + std::string(simd_level_name(default_simd_level("megakernel"))) +
+      ")\n";
   for (const SimdLevelStatus& s : simd_levels()) {
     const std::string name(simd_level_name(s.level));
     text += "  " + name + std::string(8 - name.size(), ' ') +

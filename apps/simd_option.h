@@ -20,12 +20,10 @@ CLI::Option* add_simd_option(CLI::App& command, std::optional<SimdLevel>& level)
 // unusable level throws std::invalid_argument naming it and why.
 std::vector<SimdLevel> parse_simd_levels(const std::string& list);
 
-// The level a render with this option uses.
-SimdLevel chosen_simd_level(const std::optional<SimdLevel>& level);
-
-// Why the level was chosen, for messages and metadata: "avx512 (16 float lanes), the widest
-// this machine runs" or "avx2 (8 float lanes), forced by --simd".
-std::string simd_choice_text(const std::optional<SimdLevel>& level);
+// The level a render with this option and schedule uses, and why, for messages and metadata:
+// "avx512 (16 float lanes), the widest this machine runs", "sse4.2 (4 float lanes), the
+// megakernel's default" or "avx2 (8 float lanes), forced by --simd".
+std::string simd_choice_text(const std::optional<SimdLevel>& level, const std::string& schedule);
 
 // "snee 0.1.0", then the chosen level and each level's standing.
 std::string version_text();

@@ -75,7 +75,7 @@ struct RenderOptions {
   // allocating any of them.
   MemoryBudget memory_budget;
   // The SIMD level whose kernels render (scheduler/simd_dispatch.h); unset: the widest this
-  // machine can use. The image is bitwise the same at every level.
+  // machine can use, or for the megakernel the narrowest. The image is the same at every level.
   std::optional<SimdLevel> simd;
 };
 

@@ -114,6 +114,10 @@ SimdLevel widest_simd_level() {
   return widest;
 }
 
+SimdLevel default_simd_level(const std::string& schedule) {
+  return schedule == "megakernel" ? kCompiledSimdLevel : widest_simd_level();
+}
+
 const SimdBackend& simd_backend(SimdLevel level) {
   const SimdLevelStatus& status = simd_levels()[static_cast<size_t>(level)];
   if (!status.usable) {
@@ -133,7 +137,7 @@ std::string simd_level_description(SimdLevel level) {
 
 RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks,
                     const FilmState* resume) {
-  const SimdLevel level = options.simd.value_or(widest_simd_level());
+  const SimdLevel level = options.simd.value_or(default_simd_level(options.schedule));
   RenderResult result = simd_backend(level).render(scene, options, hooks, resume);
   result.stats.simd_level = level;
   return result;

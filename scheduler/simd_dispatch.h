@@ -1,5 +1,5 @@
 // Which SIMD level renders: render() (render.h) runs the kernels built for
-// RenderOptions::simd, or for the widest level this machine can use when it is unset. A level
+// RenderOptions::simd, or for default_simd_level() when it is unset. A level
 // can be used when the CPU runs it (kernels/simd/simd_level.h) and its kernels are in this
 // program (the build's own level) or in a module found beside it (simd_backend.h). Images are
 // bitwise identical at every level, so the choice changes only the speed.
@@ -41,6 +41,12 @@ bool simd_modules_built();
 
 // The widest usable level.
 SimdLevel widest_simd_level();
+
+// The level a render runs when RenderOptions::simd is unset: the widest usable one for the
+// wavefront schedules, the build's own (the narrowest) for the megakernel, whose one-path
+// batches compute every lane for a single slot, so that a wider batch is only more work
+// (0.70-0.79x the SSE4.2 rate at AVX-512, docs/performance.md "SIMD levels").
+SimdLevel default_simd_level(const std::string& schedule);
 
 // The backend of a level; throws std::invalid_argument naming the level and why it cannot be
 // used, with the levels that can.

@@ -61,10 +61,11 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
        "path_state_bytes_per_slot_snee", "simd_levels", "skipped", "workloads", "memory_vs_spp"},
       "bench");
   EXPECT_GT(b["path_state_bytes_per_slot"].get<int>(), 0);
-  // One SIMD level by default: the widest this machine runs.
-  ASSERT_EQ(b["simd_levels"].size(), 1u);
-  const std::string level = b["simd_levels"][0];
-  const size_t width = level == "sse4.2" ? 4 : level == "avx2" ? 8 : 16;
+  // Without --simd each schedule runs at its default level: the megakernel at sse4.2 (the
+  // build's own), the wavefront at the widest this machine runs.
+  ASSERT_GE(b["simd_levels"].size(), 1u);
+  EXPECT_EQ(b["simd_levels"][0], "sse4.2");
+  const std::string widest = b["simd_levels"].back();
   // SNEE's vertex memory is allocated only for snee.
   EXPECT_GT(b["path_state_bytes_per_slot_snee"].get<int>(),
             b["path_state_bytes_per_slot"].get<int>());
@@ -109,9 +110,13 @@ TEST_F(PerfCli, BenchQuickWritesEveryKey) {
       // one-slot megakernel unit fills one lane of each batch, except when subdivision weighs
       // one exit's two proposals (TB and BT) in one batch.
       const auto& lanes = run["simd"];
+      const std::string level = run["schedule"] == "megakernel" ? "sse4.2" : widest;
+      const size_t width = level == "sse4.2" ? 4 : level == "avx2" ? 8 : 16;
       EXPECT_EQ(run["simd_level"], level) << where;
       EXPECT_EQ(lanes["level"], level) << where;
       EXPECT_EQ(lanes["width"].get<size_t>(), width) << where;
+      EXPECT_EQ(run["vs_first_simd_level"]["paths_per_cpu_second"], 1.0) << where;
+      EXPECT_GT(run["vs_megakernel"]["paths_per_cpu_second"].get<double>(), 0.0) << where;
       const double occupancy = lanes["lane_occupancy"].get<double>();
       EXPECT_GT(occupancy, 0.0) << where;
       EXPECT_LE(occupancy, 1.0) << where;

@@ -161,9 +161,12 @@ TEST_P(SimdLevels, RenderTheSameBytesAsTheBuildsOwnLevel) {
     EXPECT_EQ(reference.stats.snee, r.stats.snee) << simd_level_name(level);
     EXPECT_EQ(reference.stats.nonfinite_samples, r.stats.nonfinite_samples);
   }
-  // The widest level is the default.
+  // The widest level is the default, the narrowest for the megakernel.
   o.simd.reset();
-  EXPECT_EQ(render(scene, o).stats.simd_level, widest_simd_level());
+  EXPECT_EQ(render(scene, o).stats.simd_level,
+            std::string(c.schedule) == "megakernel" ? kCompiledSimdLevel : widest_simd_level());
+  EXPECT_EQ(default_simd_level("megakernel"), kCompiledSimdLevel);
+  EXPECT_EQ(default_simd_level("local"), widest_simd_level());
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SimdLevels,
