@@ -142,6 +142,35 @@ TEST_F(CliTest, SimdOptionForcesALevelThatRendersTheSamePixels) {
   EXPECT_FALSE(first.empty());
 }
 
+// `cmake --install` puts the program in PREFIX/bin and the SIMD modules in PREFIX/lib/snee,
+// where the installed program finds them before the build tree's.
+TEST_F(CliTest, AnInstalledSneeLoadsTheModulesInstalledWithIt) {
+  const fs::path prefix = dir_ / "prefix";
+  ASSERT_EQ(test::run_command(
+                std::string("'" SNEE_CMAKE_COMMAND "' --install '" SNEE_BUILD_DIR "' --prefix '") +
+                    prefix.string() + "'",
+                dir_ / "install.txt"),
+            0)
+      << read_file(dir_ / "install.txt");
+  const std::string installed = (prefix / "bin" / "snee").string();
+  std::string version, output;
+  ASSERT_EQ(test::run_in_directory(dir_, installed, "--version", version), 0) << version;
+  for (const SimdLevelStatus& s : simd_levels()) {
+    if (!s.usable || s.level == kCompiledSimdLevel) continue;
+    const std::string module = "snee-simd-" + std::string(simd_level_name(s.level)) + ".so";
+    EXPECT_TRUE(contains(version, "usable: module " + (prefix / "lib" / "snee" / module).string()))
+        << version;
+    ASSERT_EQ(test::run_in_directory(dir_, installed,
+                                     "render builtin:furnace-sphere --spp 1 --resolution 8x8 -o "
+                                     "i.exr --simd " +
+                                         std::string(simd_level_name(s.level)),
+                                     output),
+              0)
+        << output;
+    EXPECT_TRUE(contains(output, std::string(simd_level_name(s.level)) + "\n")) << output;
+  }
+}
+
 TEST_F(CliTest, AnUnknownSimdLevelIsAUsageError) {
   const Outcome run = snee("render builtin:default --spp 1 --simd avx");
   EXPECT_NE(run.exit_code, 0) << run.output;
