@@ -10,28 +10,11 @@
 #include <new>
 #include <vector>
 
+#include "kernels/wavefront/aligned_array.h"
+#include "kernels/wavefront/work_items.h"
 #include "scene/embree_scene.h"
 
 namespace snee {
-
-template <typename T>
-class AlignedArray {
- public:
-  AlignedArray() = default;
-  explicit AlignedArray(size_t n)
-      : data_(static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{64}))), size_(n) {}
-  T* data() const { return data_.get(); }
-  T& operator[](size_t i) { return data_.get()[i]; }
-  const T& operator[](size_t i) const { return data_.get()[i]; }
-  size_t size() const { return size_; }
-
- private:
-  struct Delete {
-    void operator()(T* p) const { ::operator delete (p, std::align_val_t{64}); }
-  };
-  std::unique_ptr<T, Delete> data_;
-  size_t size_ = 0;
-};
 
 // A list of path slots waiting for one stage.
 class SlotQueue {
@@ -50,115 +33,50 @@ class SlotQueue {
   size_t size_ = 0;
 };
 
-// SNEE exit points found by the probe stage, waiting for subdivision: the slot of the medium
-// vertex x_i and the probe's first hit x_k on that medium's dielectric boundary, with its
-// geometric and shading normals and the interface's roughness there.
+// SNEE exit points found by the probe stage, waiting for subdivision (ExitPointItems,
+// work_items.h).
 class ExitPointQueue {
  public:
-  explicit ExitPointQueue(size_t capacity)
-      : slot_(capacity),
-        geom_(capacity),
-        x_(capacity),
-        y_(capacity),
-        z_(capacity),
-        nx_(capacity),
-        ny_(capacity),
-        nz_(capacity),
-        snx_(capacity),
-        sny_(capacity),
-        snz_(capacity),
-        alpha_(capacity) {}
+  explicit ExitPointQueue(size_t capacity) : items_(capacity) {}
   void clear() { size_ = 0; }
   bool empty() const { return size_ == 0; }
   size_t size() const { return size_; }
   void push(uint32_t slot, uint32_t geom, Vec3 x_k, Vec3 n_k, Vec3 ns_k, float alpha) {
     const size_t i = size_++;
-    slot_[i] = slot;
-    geom_[i] = geom;
-    x_[i] = x_k.x;
-    y_[i] = x_k.y;
-    z_[i] = x_k.z;
-    nx_[i] = n_k.x;
-    ny_[i] = n_k.y;
-    nz_[i] = n_k.z;
-    snx_[i] = ns_k.x;
-    sny_[i] = ns_k.y;
-    snz_[i] = ns_k.z;
-    alpha_[i] = alpha;
+    items_.slot[i] = slot;
+    items_.geom[i] = geom;
+    items_.x[i] = x_k.x;
+    items_.y[i] = x_k.y;
+    items_.z[i] = x_k.z;
+    items_.nx[i] = n_k.x;
+    items_.ny[i] = n_k.y;
+    items_.nz[i] = n_k.z;
+    items_.snx[i] = ns_k.x;
+    items_.sny[i] = ns_k.y;
+    items_.snz[i] = ns_k.z;
+    items_.alpha[i] = alpha;
   }
-  uint32_t slot(size_t i) const { return slot_[i]; }
-  const uint32_t* slots() const { return slot_.data(); }
+  uint32_t slot(size_t i) const { return items_.slot[i]; }
+  const uint32_t* slots() const { return items_.slot.data(); }
   // Component axis (0, 1, 2) of x_k and n_k by queue position, for batched loads.
   const float* x_k_component(int axis) const {
-    return (axis == 0 ? x_ : axis == 1 ? y_ : z_).data();
+    return (axis == 0 ? items_.x : axis == 1 ? items_.y : items_.z).data();
   }
   const float* n_k_component(int axis) const {
-    return (axis == 0 ? nx_ : axis == 1 ? ny_ : nz_).data();
+    return (axis == 0 ? items_.nx : axis == 1 ? items_.ny : items_.nz).data();
   }
   const float* ns_k_component(int axis) const {
-    return (axis == 0 ? snx_ : axis == 1 ? sny_ : snz_).data();
+    return (axis == 0 ? items_.snx : axis == 1 ? items_.sny : items_.snz).data();
   }
-  uint32_t geom(size_t i) const { return geom_[i]; }
-  Vec3 x_k(size_t i) const { return {x_[i], y_[i], z_[i]}; }
-  Vec3 n_k(size_t i) const { return {nx_[i], ny_[i], nz_[i]}; }
-  Vec3 ns_k(size_t i) const { return {snx_[i], sny_[i], snz_[i]}; }
-  float alpha(size_t i) const { return alpha_[i]; }
+  uint32_t geom(size_t i) const { return items_.geom[i]; }
+  Vec3 x_k(size_t i) const { return {items_.x[i], items_.y[i], items_.z[i]}; }
+  Vec3 n_k(size_t i) const { return {items_.nx[i], items_.ny[i], items_.nz[i]}; }
+  Vec3 ns_k(size_t i) const { return {items_.snx[i], items_.sny[i], items_.snz[i]}; }
+  float alpha(size_t i) const { return items_.alpha[i]; }
 
  private:
-  AlignedArray<uint32_t> slot_, geom_;
-  AlignedArray<float> x_, y_, z_, nx_, ny_, nz_, snx_, sny_, snz_, alpha_;
+  ExitPointItems items_;
   size_t size_ = 0;
-};
-
-// Scratch arrays indexed by queue position are rounded up to 16 entries, a whole number of
-// batches at every x86 SIMD width, so a short last chunk is stored with whole vector stores.
-inline size_t padded_capacity(size_t n) {
-  return (n + 15) / 16 * 16;
-}
-
-// What the batched part of medium_event computed for each entry of its queue: the sampled
-// flight distance, the scattering point it reaches and the phase-sampled direction from there,
-// with its pdf, and the event's roulette number.
-struct FlightResults {
-  explicit FlightResults(size_t capacity) {
-    for (AlignedArray<float>* a : {&t, &x, &y, &z, &wx, &wy, &wz, &phase_pdf, &u_roulette})
-      *a = AlignedArray<float>(padded_capacity(capacity));
-  }
-  AlignedArray<float> t, x, y, z, wx, wy, wz, phase_pdf, u_roulette;
-};
-
-// What shade_surface's batched part computed for each entry of its queue: the hit point and
-// geometric normal, the dielectric's parameters there, its BSDF sample (the light-side
-// direction in world space, the local cosine, f, pdf and flags kSurfaceSample*), and the
-// event's light-sample and roulette numbers (drawn for the chunks that may use them).
-inline constexpr uint32_t kSurfaceSampleValid = 1, kSurfaceSampleTransmission = 2,
-                          kSurfaceSampleDelta = 4;
-struct SurfaceResults {
-  explicit SurfaceResults(size_t capacity) {
-    for (AlignedArray<float>* a :
-         {&px,         &py,         &pz,         &nx,         &ny,         &nz,           &snx,
-          &sny,        &snz,        &eta,        &alpha,      &u_light0,   &u_light1,     &u_light2,
-          &u_roulette, &bucket_snx, &bucket_sny, &bucket_snz, &bucket_eta, &bucket_alpha, &wx,
-          &wy,         &wz,         &cos_local,  &f,          &pdf})
-      *a = AlignedArray<float>(padded_capacity(capacity));
-    for (AlignedArray<uint32_t>* a : {&light_sampled, &bucket_slots, &bucket_of, &flags})
-      *a = AlignedArray<uint32_t>(padded_capacity(capacity));
-  }
-  // By queue position. n: the outward geometric normal; sn: the shading normal (n itself on
-  // flat surfaces), the frame the dielectric is sampled in.
-  AlignedArray<float> px, py, pz, nx, ny, nz, snx, sny, snz, eta, alpha;
-  AlignedArray<float> u_light0, u_light1, u_light2, u_roulette;
-  AlignedArray<uint32_t> light_sampled;  // 1 where the per-slot pass may sample a light
-
-  // The dielectric bucket: the entries whose surface is a dielectric, in queue order, which
-  // alone get the batched BSDF sample (no lane samples a dielectric for a diffuse hit).
-  size_t bucket_size = 0;
-  AlignedArray<uint32_t> bucket_slots;  // their slots
-  AlignedArray<uint32_t> bucket_of;     // by queue position: the entry's index in the bucket
-  // By bucket index: the sample's inputs (shading normal, interface) and its results.
-  AlignedArray<float> bucket_snx, bucket_sny, bucket_snz, bucket_eta, bucket_alpha;
-  AlignedArray<float> wx, wy, wz, cos_local, f, pdf;
-  AlignedArray<uint32_t> flags;
 };
 
 // Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.

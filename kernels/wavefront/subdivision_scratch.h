@@ -28,30 +28,12 @@ struct SubdivisionRandoms {
   std::array<AlignedArray<float>, 4 * kBlocks> u;
 };
 
-// How far a strategy's batched part got at an exit.
-inline constexpr uint32_t kSneeSampled = 0, kSneeNotPlaced = 1, kSneeNotRefracted = 2,
-                          kSneeNoDistance = 3;
-
-// A strategy's batched part at each exit: the middle vertex, the direction it found (bottom-to-
-// top: omega_o; top-to-bottom keeps the light's), the sampling density and the status.
-struct StrategyResults {
-  explicit StrategyResults(size_t capacity) : status(padded_capacity(capacity)) {
-    for (AlignedArray<float>* a : {&x, &y, &z, &wx, &wy, &wz, &pdf})
-      *a = AlignedArray<float>(padded_capacity(capacity));
-  }
-  AlignedArray<float> x, y, z, wx, wy, wz, pdf;
-  AlignedArray<uint32_t> status;
-};
-
-// Top-to-bottom's light samples at each exit, taken per exit before its batched part, and
-// whether each gives a usable direction (lit = 1).
-struct TopToBottomLights {
-  explicit TopToBottomLights(size_t capacity) : samples(capacity) {
-    for (AlignedArray<float>* a : {&wx, &wy, &wz, &pdf, &delta, &lit})
-      *a = AlignedArray<float>(padded_capacity(capacity));
-  }
+// Top-to-bottom's light samples at each exit, taken per exit before its batched part, and the
+// same in lanes (work_items.h).
+struct TopToBottomLights : TopToBottomLightLanes {
+  explicit TopToBottomLights(size_t capacity)
+      : TopToBottomLightLanes(capacity), samples(capacity) {}
   std::vector<LightSample> samples;
-  AlignedArray<float> wx, wy, wz, pdf, delta, lit;
 };
 
 // The proposals that sampled something, in exit order, waiting for the batched weighing;
