@@ -1,7 +1,6 @@
 #include "scheduler/simd_dispatch.h"
 
 #include <dlfcn.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <stdexcept>
