@@ -2,57 +2,35 @@
 
 namespace snee {
 
-RayBatch::RayBatch(size_t capacity)
-    : capacity_(capacity),
-      org_x_(capacity),
-      org_y_(capacity),
-      org_z_(capacity),
-      tnear_(capacity),
-      dir_x_(capacity),
-      dir_y_(capacity),
-      dir_z_(capacity),
-      time_(capacity),
-      tfar_(capacity),
-      mask_(capacity),
-      id_(capacity),
-      flags_(capacity),
-      ng_x_(capacity),
-      ng_y_(capacity),
-      ng_z_(capacity),
-      u_(capacity),
-      v_(capacity),
-      prim_id_(capacity),
-      geom_id_(capacity),
-      inst_id_(capacity) {}
-
 uint32_t RayBatch::push(Vec3 origin, Vec3 direction, float tnear, float tfar) {
   const size_t i = size_++;
-  org_x_[i] = origin.x;
-  org_y_[i] = origin.y;
-  org_z_[i] = origin.z;
-  tnear_[i] = tnear;
-  dir_x_[i] = direction.x;
-  dir_y_[i] = direction.y;
-  dir_z_[i] = direction.z;
-  time_[i] = 0.0f;
-  tfar_[i] = tfar;
-  mask_[i] = 0xFFFFFFFFu;
-  id_[i] = static_cast<uint32_t>(i);
-  flags_[i] = 0;
-  geom_id_[i] = kInvalidId;
-  inst_id_[i] = kInvalidId;
-  prim_id_[i] = kInvalidId;
+  s_.org_x[i] = origin.x;
+  s_.org_y[i] = origin.y;
+  s_.org_z[i] = origin.z;
+  s_.tnear[i] = tnear;
+  s_.dir_x[i] = direction.x;
+  s_.dir_y[i] = direction.y;
+  s_.dir_z[i] = direction.z;
+  s_.time[i] = 0.0f;
+  s_.tfar[i] = tfar;
+  s_.mask[i] = 0xFFFFFFFFu;
+  s_.id[i] = static_cast<uint32_t>(i);
+  s_.flags[i] = 0;
+  s_.geom_id[i] = kInvalidId;
+  s_.inst_id[i] = kInvalidId;
+  s_.prim_id[i] = kInvalidId;
   return static_cast<uint32_t>(i);
 }
 
 RayArrays RayBatch::rays() {
-  return {org_x_.data(), org_y_.data(), org_z_.data(), tnear_.data(), dir_x_.data(), dir_y_.data(),
-          dir_z_.data(), time_.data(),  tfar_.data(),  mask_.data(),  id_.data(),    flags_.data()};
+  return {s_.org_x.data(), s_.org_y.data(), s_.org_z.data(), s_.tnear.data(),
+          s_.dir_x.data(), s_.dir_y.data(), s_.dir_z.data(), s_.time.data(),
+          s_.tfar.data(),  s_.mask.data(),  s_.id.data(),    s_.flags.data()};
 }
 
 HitArrays RayBatch::hits() {
-  return {ng_x_.data(), ng_y_.data(),    ng_z_.data(),    u_.data(),
-          v_.data(),    prim_id_.data(), geom_id_.data(), inst_id_.data()};
+  return {s_.ng_x.data(), s_.ng_y.data(),    s_.ng_z.data(),    s_.u.data(),
+          s_.v.data(),    s_.prim_id.data(), s_.geom_id.data(), s_.inst_id.data()};
 }
 
 ShadowQueue::ShadowQueue(size_t segment_capacity) : segments_(segment_capacity) {

@@ -79,30 +79,28 @@ class ExitPointQueue {
   size_t size_ = 0;
 };
 
-// Rays and hits in Embree's SoA stream layout, so a batch is traced with no copy.
+// Rays and hits in Embree's SoA stream layout (RayStream, work_items.h), so a batch is traced
+// with no copy.
 class RayBatch {
  public:
-  explicit RayBatch(size_t capacity);
+  explicit RayBatch(size_t capacity) : capacity_(capacity), s_(capacity) {}
   void clear() { size_ = 0; }
   size_t size() const { return size_; }
   size_t capacity() const { return capacity_; }
   // Appends a ray; returns its index.
   uint32_t push(Vec3 origin, Vec3 direction, float tnear, float tfar);
-  Vec3 origin(size_t i) const { return {org_x_[i], org_y_[i], org_z_[i]}; }
-  Vec3 direction(size_t i) const { return {dir_x_[i], dir_y_[i], dir_z_[i]}; }
-  float tfar(size_t i) const { return tfar_[i]; }
-  uint32_t geom(size_t i) const { return geom_id_[i]; }
-  uint32_t prim(size_t i) const { return prim_id_[i]; }
-  bool occluded(size_t i) const { return tfar_[i] < 0; }
+  Vec3 origin(size_t i) const { return {s_.org_x[i], s_.org_y[i], s_.org_z[i]}; }
+  Vec3 direction(size_t i) const { return {s_.dir_x[i], s_.dir_y[i], s_.dir_z[i]}; }
+  float tfar(size_t i) const { return s_.tfar[i]; }
+  uint32_t geom(size_t i) const { return s_.geom_id[i]; }
+  uint32_t prim(size_t i) const { return s_.prim_id[i]; }
+  bool occluded(size_t i) const { return s_.tfar[i] < 0; }
   RayArrays rays();
   HitArrays hits();
 
  private:
   size_t capacity_, size_ = 0;
-  AlignedArray<float> org_x_, org_y_, org_z_, tnear_, dir_x_, dir_y_, dir_z_, time_, tfar_;
-  AlignedArray<uint32_t> mask_, id_, flags_;
-  AlignedArray<float> ng_x_, ng_y_, ng_z_, u_, v_;
-  AlignedArray<uint32_t> prim_id_, geom_id_, inst_id_;
+  RayStream s_;
 };
 
 // Medium code of a shadow segment that only needs a visibility answer (no transmittance, no

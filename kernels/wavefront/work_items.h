@@ -1,7 +1,6 @@
-// The work items and per-stage scratch records of a work unit, each declared once as its field
-// list and generated as a structure of arrays (soa_record.h), indexed by queue position. The
-// path state's own fields are listed in path_state.h, the Embree ray streams in queues.h
-// (RayBatch, whose layout Embree fixes).
+// The work items and per-stage scratch records of a work unit, and the Embree ray streams, each
+// declared once as its field list and generated as a structure of arrays (soa_record.h),
+// indexed by queue position. The path state's own fields are listed in path_state.h.
 #pragma once
 
 #include <cstddef>
@@ -92,5 +91,17 @@ SNEE_SOA_RECORD(StrategyResults, SNEE_STRATEGY_RESULT_FIELDS);
   X(float, pdf) X(float, delta) X(float, lit)
 // clang-format on
 SNEE_SOA_RECORD(TopToBottomLightLanes, SNEE_TOP_TO_BOTTOM_LIGHT_FIELDS);
+
+// A stream of rays and their hits as Embree's stream queries read and write them (RTCRayNp and
+// RTCHitNp take one pointer per field, so every field is an array of its own): RayBatch.
+// clang-format off
+#define SNEE_RAY_STREAM_FIELDS(X)                                                               \
+  X(float, org_x) X(float, org_y) X(float, org_z) X(float, tnear)                               \
+  X(float, dir_x) X(float, dir_y) X(float, dir_z) X(float, time) X(float, tfar)                 \
+  X(uint32_t, mask) X(uint32_t, id) X(uint32_t, flags)                                          \
+  X(float, ng_x) X(float, ng_y) X(float, ng_z) X(float, u) X(float, v)                          \
+  X(uint32_t, prim_id) X(uint32_t, geom_id) X(uint32_t, inst_id)
+// clang-format on
+SNEE_SOA_RECORD(RayStream, SNEE_RAY_STREAM_FIELDS);
 
 }  // namespace snee
