@@ -150,6 +150,9 @@ ShortestFreePath shortest_free_path(const Scene& scene, float clearance) {
   return shortest;
 }
 
+namespace {
+
+// render() at this compilation's SIMD level (simd_dispatch.cpp chooses among the levels).
 RenderResult render_compiled_level(const Scene& scene, const RenderOptions& options,
                                    const RenderHooks& hooks, const FilmState* resume) {
   validate(scene, options, hooks, resume);
@@ -287,6 +290,13 @@ RenderResult render_compiled_level(const Scene& scene, const RenderOptions& opti
   film.meta.render_seconds = stats.seconds;
   film.meta.nonfinite_samples = stats.nonfinite_samples;
   return result;
+}
+
+}  // namespace
+
+const SimdBackend& compiled_backend() {
+  static const SimdBackend backend{.render = &render_compiled_level};
+  return backend;
 }
 
 }  // namespace snee

@@ -41,10 +41,9 @@ struct SimdBackend {
   RenderEntry render = nullptr;
 };
 
-// render() as compiled in this build (render.cpp), at kCompiledSimdLevel; the dispatcher's
-// render() chooses among these.
-RenderResult render_compiled_level(const Scene& scene, const RenderOptions& options,
-                                   const RenderHooks& hooks, const FilmState* resume);
+// The backend of this compilation (render.cpp), at kCompiledSimdLevel: the program's built-in
+// one, and what a module's snee_simd_backend() returns.
+const SimdBackend& compiled_backend();
 
 }  // namespace snee
 

@@ -9,8 +9,6 @@
 namespace snee {
 namespace {
 
-const SimdBackend kBuiltIn{.render = &render_compiled_level};
-
 // Where modules are looked for: beside the running program, in the lib/snee/ of the prefix it
 // is installed under, and in the build tree that made it (tests and apps run from there).
 std::vector<std::filesystem::path> module_directories() {
@@ -23,12 +21,6 @@ std::vector<std::filesystem::path> module_directories() {
   }
   dirs.emplace_back(SNEE_SIMD_MODULE_DIR);
   return dirs;
-}
-
-// The loaded modules' backends, by level (the built-in one for the program's own level).
-std::vector<const SimdBackend*>& backends() {
-  static std::vector<const SimdBackend*> by_level(std::size(kSimdLevels), nullptr);
-  return by_level;
 }
 
 }  // namespace
@@ -74,32 +66,39 @@ SimdModule load_simd_module(SimdLevel level,
 
 namespace {
 
-std::vector<SimdLevelStatus> find_levels() {
-  std::vector<SimdLevelStatus> levels;
-  for (const SimdLevel level : kSimdLevels) {
-    SimdLevelStatus status{level, false, ""};
-    if (!cpu_runs(level)) {
-      status.detail = "this CPU lacks it";
-    } else if (level == kCompiledSimdLevel) {
-      status = {level, true, "built in"};
-      backends()[static_cast<size_t>(level)] = &kBuiltIn;
-    } else if (!SNEE_SIMD_DISPATCH) {
-      status.detail = "not built (this build has SIMD dispatch off: -DSNEE_SIMD_DISPATCH=OFF)";
-    } else {
-      const SimdModule module = load_simd_module(level, module_directories());
-      status = module.status;
-      backends()[static_cast<size_t>(level)] = module.backend;
+// Every level's standing and backend (null where unusable), by level, found once.
+const std::vector<SimdModule>& levels() {
+  static const std::vector<SimdModule> by_level = [] {
+    std::vector<SimdModule> found;
+    for (const SimdLevel level : kSimdLevels) {
+      SimdModule m{{level, false, ""}, nullptr};
+      if (!cpu_runs(level)) {
+        m.status.detail = "this CPU lacks it";
+      } else if (level == kCompiledSimdLevel) {
+        m.status.usable = true;
+        m.status.detail = "built in";
+        m.backend = &compiled_backend();
+      } else if (!SNEE_SIMD_DISPATCH) {
+        m.status.detail = "not built (this build has SIMD dispatch off: -DSNEE_SIMD_DISPATCH=OFF)";
+      } else {
+        m = load_simd_module(level, module_directories());
+      }
+      found.push_back(m);
     }
-    levels.push_back(status);
-  }
-  return levels;
+    return found;
+  }();
+  return by_level;
 }
 
 }  // namespace
 
 const std::vector<SimdLevelStatus>& simd_levels() {
-  static const std::vector<SimdLevelStatus> levels = find_levels();
-  return levels;
+  static const std::vector<SimdLevelStatus> statuses = [] {
+    std::vector<SimdLevelStatus> s;
+    for (const SimdModule& m : levels()) s.push_back(m.status);
+    return s;
+  }();
+  return statuses;
 }
 
 bool simd_modules_built() {
@@ -126,7 +125,7 @@ const SimdBackend& simd_backend(SimdLevel level) {
     throw std::invalid_argument("SIMD level " + std::string(simd_level_name(level)) +
                                 " cannot be used here (" + status.detail + "); usable: " + usable);
   }
-  return *backends()[static_cast<size_t>(level)];
+  return *levels()[static_cast<size_t>(level)].backend;
 }
 
 std::string simd_level_description(SimdLevel level) {
@@ -137,9 +136,7 @@ std::string simd_level_description(SimdLevel level) {
 RenderResult render(const Scene& scene, const RenderOptions& options, const RenderHooks& hooks,
                     const FilmState* resume) {
   const SimdLevel level = options.simd.value_or(default_simd_level(options.schedule));
-  RenderResult result = simd_backend(level).render(scene, options, hooks, resume);
-  result.stats.simd_level = level;
-  return result;
+  return simd_backend(level).render(scene, options, hooks, resume);
 }
 
 }  // namespace snee

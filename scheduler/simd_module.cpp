@@ -3,6 +3,5 @@
 #include "scheduler/simd_backend.h"
 
 extern "C" __attribute__((visibility("default"))) const snee::SimdBackend* snee_simd_backend() {
-  static const snee::SimdBackend backend{.render = &snee::render_compiled_level};
-  return &backend;
+  return &snee::compiled_backend();
 }
