@@ -1,6 +1,5 @@
 #include "scene/rgb_image_io.h"
 
-#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 
 #include "scene/exr_header_check.h"
 #include "scene/input_file.h"
+#include "scene/memory_reader.h"
 #include "scene/scene_error.h"
 
 namespace snee {
@@ -81,7 +81,7 @@ RgbImage decode_rgb_image(const std::string& bytes, const std::string& path, std
                           const MemoryBudget& budget, PixelValues values) {
   // OpenEXR would allocate what an attribute's size claims before reading it.
   check_exr_header(bytes, path);
-  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  MemoryReader memory(bytes);
   // The colour channels as stored: a PNG's alpha would otherwise be multiplied into them (a
   // texel of alpha 0 reading black), while snee ignores alpha.
   OIIO::ImageSpec config;

@@ -301,6 +301,64 @@ TEST_F(EnvImageIoTest, TiledImagesReadRowsOfTiles) {
   }
 }
 
+// The fuzzer found an EXR whose line offset table points before the start of the file: OpenEXR
+// seeks there (offsets are unsigned; -1 passes its check that they are not zero) and
+// OpenImageIO 2.4's in-memory reader then copied from before its buffer, whose bounds check
+// wraps around for a negative position. Every offset is tried: the first and last row, and
+// positions before, at and beyond both ends of the file. Each one either reads the right pixels
+// (OpenEXR rebuilds a table it finds wrong by walking the rows) or is an error naming the file
+// and row; under AddressSanitizer no read leaves the file's bytes.
+TEST_F(EnvImageIoTest, ExrLineOffsetsOutsideTheFileAreErrors) {
+  constexpr int kRows = 2;
+  // Uncompressed, so that each row is a chunk with its own offset.
+  const std::string path = (dir_ / "offsets.exr").string();
+  std::string file;
+  {
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out) << OIIO::geterror();
+    OIIO::ImageSpec spec(1, kRows, 3, OIIO::TypeDesc::FLOAT);
+    spec.attribute("compression", "none");
+    ASSERT_TRUE(out->open(path, spec)) << out->geterror();
+    const std::vector<float> pixels(3 * kRows, 0.5f);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) << out->geterror();
+    out->close();
+    ASSERT_EQ(read_env_image(path).pixels.size(), size_t{kRows});
+    std::ifstream in(path, std::ios::binary);
+    file.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  // The table is the kRows eight-byte offsets just before the first row, which the first of
+  // them points at.
+  const auto offset_at = [&file](size_t at) {
+    uint64_t value = 0;
+    for (int i = 7; i >= 0; --i) value = value << 8 | static_cast<unsigned char>(file[at + i]);
+    return value;
+  };
+  size_t table = 0;
+  while (table + 8 * kRows <= file.size() && offset_at(table) != table + 8 * kRows) ++table;
+  ASSERT_LT(table + 8 * kRows, file.size()) << "no line offset table in " << path;
+  const auto size = static_cast<int64_t>(file.size());
+  for (int row = 0; row < kRows; ++row) {
+    for (const int64_t offset : {int64_t{-1}, int64_t{-4}, int64_t{-1} << 40, size - 1, size,
+                                 size + 3, int64_t{1} << 40}) {
+      std::string corrupt = file;
+      for (int i = 0; i < 8; ++i) {
+        corrupt[table + 8 * row + i] = static_cast<char>(static_cast<uint64_t>(offset) >> (8 * i));
+      }
+      const std::string name =
+          (dir_ / ("row" + std::to_string(row) + "-at" + std::to_string(offset) + ".exr")).string();
+      std::ofstream(name, std::ios::binary) << corrupt;
+      try {
+        const RgbImage image = read_env_image(name);
+        for (const Rgb& p : image.pixels) EXPECT_EQ(p, Rgb(0.5f)) << name;
+      } catch (const SceneError& e) {
+        EXPECT_EQ(
+            std::string(e.what()).rfind(name + ": cannot decode environment image at row ", 0), 0u)
+            << e.what();
+      }
+    }
+  }
+}
+
 // Images snee cannot use as a lat-long map are refused by name, not read into a wrong layout.
 // OpenImageIO 2.4 writes no volume that reads back as one (its TIFF volumes read back flat),
 // so the volume is a hand-made 4x4x3 DDS volume texture (the DDS reader keeps the depth).
