@@ -382,8 +382,14 @@ std::unique_ptr<test::BackgroundCommand> render_into_a_vanished_directory(const 
                                "--spp", "1000000", "--checkpoint", "0.05", "-o", exr, "--quiet"},
       t.path("c.txt"));
   EXPECT_TRUE(test::wait_for([&] { return fs::exists(exr); })) << run->output();
-  fs::remove_all(t.path("out"));
-  write_file(t.path("out"), "in the way");
+  // The render writes a checkpoint every 0.05 s and may create the directory again between the
+  // removal and the write (seen under load): repeat until the file stands in its way.
+  for (int attempt = 0; attempt < 1000 && !fs::is_regular_file(t.path("out")); ++attempt) {
+    std::error_code ignored;
+    fs::remove_all(t.path("out"), ignored);
+    write_file(t.path("out"), "in the way");
+  }
+  EXPECT_TRUE(fs::is_regular_file(t.path("out")));
   EXPECT_TRUE(test::wait_for([&] { return contains(run->output(), "checkpoint not written"); }))
       << run->output();
   return run;
