@@ -193,10 +193,19 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str()
       ->group(snee);
+  c.add_option("--snee-manifold-rate", options_.snee.manifold_rate,
+               "Probability that the manifold strategy runs at a medium vertex below the first "
+               "scattering, where top-to-bottom shares its paths (docs/method.md 3.10); 1 runs "
+               "it everywhere")
+      ->check(finite_positive())
+      ->check(finite_in_range(0, 1))
+      ->capture_default_str()
+      ->group(snee);
   c.add_option("--snee-strategies", snee_strategies_,
                "Comma-separated strategies that share the transport SNEE handles: tb "
                "(top-to-bottom), bt (bottom-to-top), ub (BSDF-sampled exit), ul (light-sampled "
-               "exit), mn (refracted next-event estimation through a smooth sphere); a subset "
+               "exit), mn (refracted next-event estimation through a smooth sphere or flat-shaded "
+               "mesh); a subset "
                "isolates them")
       ->check(CLI::Validator(
           [](const std::string& text) {

@@ -108,7 +108,8 @@ nlohmann::ordered_json snee_options_json(const SneeOptions& snee) {
           {"heuristic", snee.heuristic == MisHeuristic::kPower ? "power" : "balance"},
           {"strategies", strategy_set_name(snee.enabled)},
           {"light_limit_degrees", snee.light_limit_degrees},
-          {"reflection_chains", snee.reflection_chains}};
+          {"reflection_chains", snee.reflection_chains},
+          {"manifold_rate", snee.manifold_rate}};
 }
 
 void write_json_file(const nlohmann::ordered_json& json, const std::string& path) {

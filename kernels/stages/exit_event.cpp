@@ -8,6 +8,7 @@
 #include "kernels/physics/medium/henyey_greenstein.h"
 #include "kernels/physics/snee/manifold_sphere.h"
 #include "kernels/physics/snee/snee_strategies.h"
+#include "kernels/stages/stages.h"
 #include "kernels/wavefront/path_ops.h"
 
 namespace snee {
@@ -146,12 +147,13 @@ namespace {
 // The manifold strategy's reflection chains (docs/method.md 3.12): the light refracted in at y
 // and reflected specularly inside the sphere before it reaches x_j. No other strategy makes
 // these paths under a delta light, so each counts with weight 1, over the probability of having
-// searched its reflection count (`u`). The walk would have spent one depth per reflection and
+// searched its reflection count (`u`) at a vertex where the strategy ran (`rate`). The walk
+// would have spent one depth per reflection and
 // one for the exit, so chains stop where the path tracer's depth limit would.
 void connect_reflection_chains(const KernelContext& ctx, const PathState& state, uint32_t slot,
                                const MediumInfo& m, const Shape& sphere,
                                const DielectricParams& interface, const LightSample& light, float u,
-                               ShadowQueue& shadow, KernelCounters& counters) {
+                               float rate, ShadowQueue& shadow, KernelCounters& counters) {
   const ChainChoice choice = choose_chain_reflections(u, m.chain_search);
   const int depth_left = ctx.max_depth - static_cast<int>(state.depth[slot]) - 1;
   if (choice.reflections < 1 || choice.reflections > std::min(depth_left, kMaxChainReflections)) {
@@ -179,7 +181,7 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
     const double reflectance = fresnel_dielectric(static_cast<float>(cos_l), interface.eta);
     const double scale = hg_phase(dot(w_before, -chain.omega_last), m.medium.asymmetry(x_j)) *
                          (1.0 - reflectance) * std::pow(reflectance, chain.reflections) * cos_l /
-                         (chain.jacobian * light.pdf * choice.probability);
+                         (chain.jacobian * light.pdf * choice.probability * rate);
     // The chain bends at its reflections; in a homogeneous medium (the manifold strategy's
     // premise) its transmittance is that of its total length.
     const Rgb unweighted =
@@ -210,31 +212,55 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
   }
 }
 
+// A mesh's exit points, connected by `connect(y, n, omega_r, t, share)`. A vertex deep in a
+// folded mesh can see the light through dozens of facets (most of them behind another part of
+// the mesh, which only the connection's rays find), more than the shadow segments one slot may
+// queue: then a run of kMeshExitsConnected of them, cyclically from a start drawn with `u`, is
+// connected, each standing for n / kMeshExitsConnected (every exit point is in the run with
+// probability kMeshExitsConnected / n, so the estimate stays unbiased).
+template <typename Connect>
+void connect_mesh_exits(const MeshExits& exits, float u, const Connect& connect,
+                        KernelCounters& counters) {
+  counters.count(SneeCounter::kManifoldExitsDropped, static_cast<uint64_t>(exits.dropped));
+  if (exits.count == 0) counters.count(SneeCounter::kManifoldNoExit);
+  const int n = exits.count;
+  const int run = std::min(n, kMeshExitsConnected);
+  const int start = n > run ? std::min(static_cast<int>(u * static_cast<float>(n)), n - 1) : 0;
+  if (n > run) counters.count(SneeCounter::kManifoldExitsSubsampled);
+  const double share = static_cast<double>(n) / run;
+  for (int k = 0; k < run; ++k) {
+    const MeshExit& exit = exits.exit[static_cast<size_t>((start + k) % n)];
+    connect(exit.y, exit.n, exit.omega_r, exit.t, share);
+  }
+}
+
 }  // namespace
 
 void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t slot,
                       const MediumInfo& m, ShadowQueue& shadow, KernelCounters& counters) {
-  if (ctx.lights->empty() || (m.manifold_sphere < 0 && !m.manifold_unsupported)) return;
+  if (ctx.lights->empty() || (m.manifold_boundary < 0 && !m.manifold_unsupported)) return;
   const Vec3 x_j = state.vertex_j(slot);
   const RandomBlock r = draw(ctx, state, slot, RngPurpose::kSneeManifold);
+  // Below the first scattering it runs at the rate SneeOptions::manifold_rate, decided by u[3],
+  // which is then stretched back to a uniform number for the choices below.
+  const bool x_i_medium = (state.flags[slot] & kPathMediumVertexI) != 0;
+  const float rate = x_i_medium ? ctx.snee.manifold_rate : 1.0f;
+  if (!(r.u[3] < rate)) return;
+  const float u_choice = r.u[3] / rate;
   const LightSample light = ctx.lights->sample(x_j, r.u[0], {r.u[1], r.u[2]});
   // Directional lights only: a point light's exit points need a solve in two dimensions.
   if (!light.valid || !light.delta || !std::isinf(light.distance) || !(light.pdf > 0) ||
       is_black(light.radiance)) {
     return;
   }
-  if (m.manifold_sphere < 0) {
+  const FacetExitTree* mesh = m.manifold_tree(light.wi);
+  if (m.manifold_boundary < 0 || (m.manifold_mesh && mesh == nullptr)) {
     counters.count(SneeCounter::kManifoldUnsupportedBoundary);
     return;
   }
-  const Shape& sphere = ctx.scene->shapes[static_cast<size_t>(m.manifold_sphere)];
-  const DielectricParams& interface =
-      ctx.surfaces[static_cast<size_t>(m.manifold_sphere)].dielectric;
-  const SphereExits exits =
-      sphere_exits_toward_light(sphere.center, sphere.radius, interface.eta, light.wi, x_j);
-  if (exits.count == 0) counters.count(SneeCounter::kManifoldNoExit);
+  const size_t boundary = static_cast<size_t>(m.manifold_boundary);
+  const DielectricParams& interface = ctx.surfaces[boundary].dielectric;
   const Vec3 w_before = state.direction_in_j(slot);
-  const double curvature = 1.0 / sphere.radius;
   SneeSuffix s;
   s.x_i = state.vertex_i(slot);
   s.omega_in = state.direction_in_i(slot);
@@ -245,29 +271,32 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
   s.light_pdf = light.pdf;
   s.light_delta = true;
   s.light_distant = true;
-  s.x_i_medium = (state.flags[slot] & kPathMediumVertexI) != 0;
+  s.x_i_medium = x_i_medium;
   s.x_j_medium = true;
   s.manifold = true;
-  s.boundary_curvature = static_cast<float>(curvature);
+  s.manifold_rate = rate;
+  s.boundary_curvature = m.manifold_curvature;
   const Rgb beta = state.throughput(slot);
-  for (int e = 0; e < exits.count; ++e) {
-    const SphereExit& exit = exits.exit[static_cast<size_t>(e)];
-    const double cos_l = dot(exit.n, light.wi);
+  // One exit point y (outward normal n) whose refracted light reaches x_j along omega_r after
+  // t, its contribution scaled by `share` (the inverse of the probability it was chosen, the
+  // rate aside: the rate is in the density the weights divide by).
+  const auto connect = [&](Vec3 y, Vec3 n, Vec3 omega_r, double t, double share) {
+    const double cos_l = dot(n, light.wi);
     const double jacobian =
-        refraction_volume_jacobian(exit.n, light.wi, interface.eta, curvature, exit.t);
-    if (!(cos_l > 0) || !(jacobian > 0)) continue;
+        refraction_volume_jacobian(n, light.wi, interface.eta, m.manifold_curvature, t);
+    if (!(cos_l > 0) || !(jacobian > 0)) return;
     // docs/method.md 3.10: f_p T (1 - F_r) E cos_L / J per unit volume at x_j, over the
     // light's selection probability.
-    const double scale = hg_phase(dot(w_before, -exit.omega_r), m.medium.asymmetry(x_j)) *
+    const double scale = share * hg_phase(dot(w_before, -omega_r), m.medium.asymmetry(x_j)) *
                          (1.0 - fresnel_dielectric(static_cast<float>(cos_l), interface.eta)) *
-                         cos_l / (jacobian * light.pdf);
+                         cos_l / (jacobian * light.pdf * rate);
     const Rgb unweighted = beta * light.radiance *
-                           m.medium.transmittance(x_j, -exit.omega_r, static_cast<float>(exit.t)) *
+                           m.medium.transmittance(x_j, -omega_r, static_cast<float>(t)) *
                            static_cast<float>(scale);
-    if (is_black(unweighted) || !is_finite(unweighted)) continue;
-    s.x_k = exit.y;
-    s.n_k = s.ns_k = exit.n;
-    const Vec3 inner = exit.y - ctx.epsilon * exit.n, outer = exit.y + ctx.epsilon * exit.n;
+    if (is_black(unweighted) || !is_finite(unweighted)) return;
+    s.x_k = y;
+    s.n_k = s.ns_k = n;
+    const Vec3 inner = y - ctx.epsilon * n, outer = y + ctx.epsilon * n;
     const uint32_t first = add_visibility_segment(shadow, x_j, inner, 0.0f);
     shadow.add_segment(outer, light.wi, kInfinity, kVisibilityOnly);
     if (s.x_i_medium) {
@@ -280,9 +309,22 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
           {ConnectionKind::kManifold, slot, first, 2, -1, unweighted * w, Rgb(0.0f)});
     }
     counters.count(SneeCounter::kManifoldConnections);
+  };
+  if (mesh != nullptr) {
+    connect_mesh_exits(mesh->exits_toward(x_j), u_choice, connect, counters);
+    if (ctx.snee.reflection_chains) counters.count(SneeCounter::kManifoldChainsUnsupported);
+    return;
+  }
+  const Shape& sphere = ctx.scene->shapes[boundary];
+  const SphereExits exits =
+      sphere_exits_toward_light(sphere.center, sphere.radius, interface.eta, light.wi, x_j);
+  if (exits.count == 0) counters.count(SneeCounter::kManifoldNoExit);
+  for (int e = 0; e < exits.count; ++e) {
+    const SphereExit& exit = exits.exit[static_cast<size_t>(e)];
+    connect(exit.y, exit.n, exit.omega_r, exit.t, 1.0);
   }
   if (ctx.snee.reflection_chains) {
-    connect_reflection_chains(ctx, state, slot, m, sphere, interface, light, r.u[3], shadow,
+    connect_reflection_chains(ctx, state, slot, m, sphere, interface, light, u_choice, rate, shadow,
                               counters);
   }
 }

@@ -16,6 +16,11 @@ namespace snee {
 // exit event's, with room to spare, plus two per exit point of the manifold strategy and its
 // V_first selector, plus its reflection chains (kChainSegmentBudget).
 inline constexpr size_t kShadowSegmentsPerSlot = 8 + 3 * kMaxSphereExits + kChainSegmentBudget;
+// Exit points of a mesh boundary one vertex connects (exit_event.cpp): meshes search no
+// reflection chains, so their connections (three segments each at most) take the chains' share
+// of the budget too.
+inline constexpr int kMeshExitsConnected =
+    kMaxSphereExits + static_cast<int>(kChainSegmentBudget) / 3;
 
 // The queues one work unit cycles through: the inputs of the stage table (stage_table.h) and
 // the scratch of the stages' batched passes.

@@ -109,6 +109,19 @@ bool nothing_reaches_into(const Scene& s, size_t sphere) {
   return true;
 }
 
+// A mesh boundary's exit trees for the manifold strategy, one per directional light; built for
+// snee only, the one integrator that queries them.
+std::shared_ptr<const std::vector<FacetExitTree>> facet_exit_trees(const Scene& s,
+                                                                   const Shape& mesh, float eta,
+                                                                   Integrator integrator) {
+  auto trees = std::make_shared<std::vector<FacetExitTree>>();
+  if (integrator != Integrator::kSnee) return trees;
+  for (const Light& light : s.lights) {
+    if (light.kind == LightKind::kDirectional) trees->emplace_back(mesh.mesh, eta, light.direction);
+  }
+  return trees;
+}
+
 }  // namespace
 
 KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l,
@@ -162,11 +175,16 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       continue;
     }
     MediumInfo& m = media[static_cast<size_t>(shape.interior_medium)];
-    if (shape.kind == ShapeKind::kSphere &&
-        boundaries[static_cast<size_t>(shape.interior_medium)] == 1) {
-      m.manifold_sphere = static_cast<int32_t>(i);
+    const bool only_boundary = boundaries[static_cast<size_t>(shape.interior_medium)] == 1;
+    if (only_boundary && shape.kind == ShapeKind::kSphere) {
+      m.manifold_boundary = static_cast<int32_t>(i);
+      m.manifold_curvature = 1.0f / shape.radius;
       m.manifold_interior_clear = nothing_reaches_into(s, i);
       m.chain_search = chain_search_probability(m.medium.sigma_t, shape.radius);
+    } else if (only_boundary && shape.kind == ShapeKind::kMesh && shape.closed &&
+               !shape.smooth_shading) {
+      m.manifold_boundary = static_cast<int32_t>(i);
+      m.manifold_mesh = facet_exit_trees(s, shape, info.dielectric.eta, integ);
     } else {
       m.manifold_unsupported = true;
     }

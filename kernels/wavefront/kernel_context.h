@@ -13,6 +13,7 @@
 #include "kernels/physics/bsdf/diffuse_transmission.h"
 #include "kernels/physics/lights/light_table.h"
 #include "kernels/physics/medium/homogeneous_medium.h"
+#include "kernels/physics/snee/manifold_mesh.h"
 #include "kernels/physics/snee/snee_options.h"
 #include "kernels/wavefront/snee_counters.h"
 #include "scene/camera_frame.h"
@@ -66,17 +67,34 @@ struct MediumInfo {
   // True when every boundary of this medium is an index-matched (null) interface, so a
   // straight shadow ray from inside can reach a light: only then is medium NEE worth a ray.
   bool straight_nee;
-  // The shape index of the smooth dielectric sphere that is this medium's only boundary, where
-  // the manifold strategy can find exit points (docs/method.md 3.10); -1 if there is none.
-  int32_t manifold_sphere = -1;
+  // The shape index of the smooth dielectric that is this medium's only boundary, where the
+  // manifold strategy can find exit points: a sphere (docs/method.md 3.10) or a closed
+  // flat-shaded mesh (3.13); -1 if there is none.
+  int32_t manifold_boundary = -1;
+  // The boundary's curvature as the manifold strategy's Jacobian takes it: 1 / radius for the
+  // sphere, 0 for a mesh's flat facets.
+  float manifold_curvature = 0.0f;
+  // A mesh boundary's exit trees, one per directional light of the scene (for snee only).
+  std::shared_ptr<const std::vector<FacetExitTree>> manifold_mesh = nullptr;
   // Whether the boundary is a smooth dielectric the manifold strategy has no solver for (a
-  // mesh, or several shapes): its single-scattered light under a directional light is missing.
+  // smooth-shaded mesh, or several shapes): its single-scattered light under a directional
+  // light is missing.
   bool manifold_unsupported = false;
-  // Whether no other shape reaches into manifold_sphere (no bounding box meets it), so a path
+  // Whether no other shape reaches into a sphere boundary (no bounding box meets it), so a path
   // inside it cannot be blocked: its reflection chains then need only their light segment.
   bool manifold_interior_clear = false;
-  // How often a vertex searches for reflection chains (chain_search_probability).
+  // How often a vertex searches for reflection chains (chain_search_probability; spheres only).
   double chain_search = 0.0;
+
+  // The mesh boundary's exit tree for the directional light along `light` (as LightSample::wi
+  // gives it); null for a sphere.
+  const FacetExitTree* manifold_tree(Vec3 light) const {
+    if (!manifold_mesh) return nullptr;
+    for (const FacetExitTree& tree : *manifold_mesh) {
+      if (tree.light() == light) return &tree;
+    }
+    return nullptr;
+  }
 };
 
 // The stage kernels that run their queue in SIMD chunks, for lane-occupancy counters.

@@ -29,13 +29,21 @@ enum class SneeCounter : int {
   kManifoldOccluded,        // manifold connections with a blocked segment
   kManifoldNoExit,          // medium vertices under a directional light with no exit point
   // Medium vertices under a directional light behind a smooth boundary the manifold strategy
-  // has no solver for (a mesh): their light through one refraction is not rendered.
+  // has no solver for (a smooth-shaded mesh, several shapes): their light through one
+  // refraction is not rendered.
   kManifoldUnsupportedBoundary,
   // Manifold connections along chains of internal reflections (docs/method.md 3.12), one per
   // chain found, and chains found but not connected: beyond the solutions kept for one
   // reflection count, or the shadow segments one vertex may queue (both none in tests).
   kManifoldReflectionConnections,
   kManifoldReflectionDropped,
+  // Mesh boundaries (docs/method.md 3.13): medium vertices whose reflection-last light is not
+  // searched (chains are solved on spheres only); vertices that saw the light through more
+  // facets than they connect, and connected a random run of them (unbiased); exit points beyond
+  // what one query returns (none seen in tests), not connected.
+  kManifoldChainsUnsupported,
+  kManifoldExitsSubsampled,
+  kManifoldExitsDropped,
   kCount
 };
 inline constexpr int kSneeCounterCount = static_cast<int>(SneeCounter::kCount);
@@ -64,7 +72,10 @@ inline const char* snee_counter_name(SneeCounter c) {
                                 "manifold_no_exit",
                                 "manifold_unsupported_boundary",
                                 "manifold_reflection_connections",
-                                "manifold_reflection_dropped"};
+                                "manifold_reflection_dropped",
+                                "manifold_chains_unsupported",
+                                "manifold_exits_subsampled",
+                                "manifold_exits_dropped"};
   static_assert(sizeof(names) / sizeof(names[0]) == kSneeCounterCount);
   return names[static_cast<int>(c)];
 }

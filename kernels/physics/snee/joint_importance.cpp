@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/vec3d.h"
 #include "kernels/physics/medium/henyey_greenstein.h"
 
 namespace snee {
@@ -31,36 +32,14 @@ bool usable_angle(double gamma, double sin_gamma) {
   return sin_gamma > 0 && gamma < kPiD;
 }
 
-struct Vec3d {
-  double x, y, z;
-};
-Vec3d to_double(Vec3 v) {
-  return {v.x, v.y, v.z};
-}
-double dot(Vec3d a, Vec3d b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-double norm(Vec3d a) {
-  return std::sqrt(dot(a, a));
-}
-Vec3d sub(Vec3d a, Vec3d b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec3d scale(Vec3d a, double s) {
-  return {a.x * s, a.y * s, a.z * s};
-}
-Vec3d cross(Vec3d a, Vec3d b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 }  // namespace
 
 JointImportanceSample joint_importance_sample(
     const JointImportance& j, std::span<const float, kJointImportanceDimensions> u) {
-  const Vec3d ik = sub(to_double(j.x_k), to_double(j.x_i));
-  const double d = norm(ik);
+  const Vec3d ik = Vec3d(j.x_k) - Vec3d(j.x_i);
+  const double d = length(ik);
   if (!(d > 0)) return {};
-  const Vec3d a = scale(ik, 1 / d);
+  const Vec3d a = ik * (1 / d);
 
   Vec3d w;
   double gamma, sin_gamma;
@@ -70,16 +49,16 @@ JointImportanceSample joint_importance_sample(
     sin_gamma = std::sin(gamma);
     const double phi = 2 * kPiD * u[2];
     const Frame frame = Frame::from_normal(normalize(Vec3(a.x, a.y, a.z)));
-    const Vec3d s = to_double(frame.s), t = to_double(frame.t);
+    const Vec3d s = Vec3d(frame.s), t = Vec3d(frame.t);
     const double cos_gamma = std::cos(gamma), cp = std::cos(phi), sp = std::sin(phi);
     w = {cos_gamma * a.x + sin_gamma * (cp * s.x + sp * t.x),
          cos_gamma * a.y + sin_gamma * (cp * s.y + sp * t.y),
          cos_gamma * a.z + sin_gamma * (cp * s.z + sp * t.z)};
   } else {
     float phase_pdf;
-    w = to_double(hg_sample(j.omega_in, j.g, Vec2{u[1], u[2]}, &phase_pdf));
-    w = scale(w, 1 / norm(w));
-    sin_gamma = norm(cross(w, a));
+    w = Vec3d(hg_sample(j.omega_in, j.g, Vec2{u[1], u[2]}, &phase_pdf));
+    w = w * (1 / length(w));
+    sin_gamma = length(cross(w, a));
     gamma = std::atan2(sin_gamma, dot(w, a));
   }
   if (!usable_angle(gamma, sin_gamma)) return {};
@@ -95,26 +74,26 @@ JointImportanceSample joint_importance_sample(
   if (!is_finite(x_j)) return {};
 
   const double r_jk2 = h * h + (s - delta) * (s - delta);
-  const double mu = dot(to_double(j.omega_in), w);
+  const double mu = dot(Vec3d(j.omega_in), w);
   const double pdf =
       direction_density(j, gamma, sin_gamma, mu) * h / ((kPiD - gamma) * r_jk2) / (s * s);
   return {x_j, static_cast<float>(pdf), pdf > 0};
 }
 
 float joint_importance_pdf(const JointImportance& j, Vec3 x_j) {
-  const Vec3d xi = to_double(j.x_i), xj = to_double(x_j), xk = to_double(j.x_k);
-  const Vec3d ik = sub(xk, xi), ij = sub(xj, xi);
-  const double d = norm(ik), s = norm(ij);
+  const Vec3d xi = Vec3d(j.x_i), xj = Vec3d(x_j), xk = Vec3d(j.x_k);
+  const Vec3d ik = xk - xi, ij = xj - xi;
+  const double d = length(ik), s = length(ij);
   if (!(d > 0) || !(s > 0)) return 0.0f;
-  const Vec3d a = scale(ik, 1 / d), w = scale(ij, 1 / s);
-  const double sin_gamma = norm(cross(w, a));
+  const Vec3d a = ik * (1 / d), w = ij * (1 / s);
+  const double sin_gamma = length(cross(w, a));
   const double gamma = std::atan2(sin_gamma, dot(w, a));
   if (!usable_angle(gamma, sin_gamma)) return 0.0f;
-  const Vec3d jk = sub(xk, xj);
+  const Vec3d jk = xk - xj;
   const double r_jk2 = dot(jk, jk);
   if (!(r_jk2 > 0)) return 0.0f;
   const double h = d * sin_gamma;
-  const double mu = dot(to_double(j.omega_in), w);
+  const double mu = dot(Vec3d(j.omega_in), w);
   return static_cast<float>(direction_density(j, gamma, sin_gamma, mu) * h /
                             ((kPiD - gamma) * r_jk2) / (s * s));
 }

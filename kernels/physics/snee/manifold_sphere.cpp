@@ -5,40 +5,11 @@
 #include <initializer_list>
 #include <numbers>
 
+#include "core/vec3d.h"
+
 namespace snee {
 
 namespace {
-
-// The solve runs in double: the polynomial's roots near grazing exits are ill-conditioned in
-// float.
-struct Vec3d {
-  double x = 0, y = 0, z = 0;
-  Vec3d() = default;
-  Vec3d(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
-  explicit Vec3d(Vec3 v) : x(v.x), y(v.y), z(v.z) {}
-  explicit operator Vec3() const {
-    return {static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
-  }
-  Vec3d operator+(const Vec3d& b) const { return {x + b.x, y + b.y, z + b.z}; }
-  Vec3d operator-(const Vec3d& b) const { return {x - b.x, y - b.y, z - b.z}; }
-  Vec3d operator-() const { return {-x, -y, -z}; }
-  Vec3d operator/(double s) const { return {x / s, y / s, z / s}; }
-};
-Vec3d operator*(double s, const Vec3d& v) {
-  return {s * v.x, s * v.y, s * v.z};
-}
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-Vec3d cross(const Vec3d& a, const Vec3d& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double length(const Vec3d& v) {
-  return std::sqrt(dot(v, v));
-}
-Vec3d normalize(const Vec3d& v) {
-  return v / length(v);
-}
 
 // A polynomial of degree <= 8 in u, coefficient i of u^i.
 struct Poly {

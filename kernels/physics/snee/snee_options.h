@@ -54,6 +54,7 @@ enum class MisHeuristic : uint8_t {
 // Where SNEE stops paying: measured on the paper grid's sphere under cones of 2.67 to 90
 // degrees (docs/method.md 3.11).
 inline constexpr float kDefaultLightLimitDegrees = 15.0f;
+inline constexpr float kDefaultManifoldRate = 0.125f;
 
 struct SneeOptions {
   ProbeDirections probe = ProbeDirections::kUniformSphere;
@@ -75,6 +76,12 @@ struct SneeOptions {
   // reaches x_j (docs/method.md 3.12). Those paths have no other strategy under a delta light,
   // so turning this off leaves them out: it exists to measure what they add.
   bool reflection_chains = true;
+  // The probability that the manifold strategy runs at a medium vertex x_j whose parent x_i is
+  // a medium vertex too (docs/method.md 3.10); at the first scattering it always runs. There its
+  // suffixes are the handled class, which top-to-bottom shares, and the rare V_first = 0 class,
+  // so most of its solves (a few microseconds each) can be skipped; its density carries the
+  // rate, so the weights still sum to one. The default is measured (docs/method.md 3.10).
+  float manifold_rate = kDefaultManifoldRate;
 };
 
 // Parses a comma-separated list of tb, bt, ub, ul (e.g. "tb,bt"); throws std::invalid_argument

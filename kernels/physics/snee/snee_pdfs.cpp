@@ -35,16 +35,17 @@ double first_step_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
          free_flight_pdf(s.medium.sigma_t, static_cast<float>(g.r_ij)) / (g.r_ij * g.r_ij);
 }
 
-// The manifold strategy's part at x_j, in case D's measure dA(x_k) dt: it takes the light
-// (selection probability) and every exit point, so x_j's volume density becomes dA dt by the
-// refraction volume Jacobian (docs/method.md 3.10). Zero wherever it does not run.
+// The manifold strategy's part at x_j, in case D's measure dA(x_k) dt: it runs (its rate),
+// takes the light (selection probability) and every exit point, so x_j's volume density becomes
+// dA dt by the refraction volume Jacobian (docs/method.md 3.10). Zero wherever it does not run.
 double manifold_exit_pdf(const SneeSuffix& s, const SuffixGeometry& g) {
   if (!s.manifold || !s.x_j_medium || !s.light_delta || !s.light_distant || !s.interface.delta() ||
       !(g.r_jk > 0) || !g.crosses) {
     return 0.0;
   }
-  return s.light_pdf * refraction_volume_jacobian(s.n_k, s.omega_o, s.interface.eta,
-                                                  s.boundary_curvature, g.r_jk);
+  return s.manifold_rate * s.light_pdf *
+         refraction_volume_jacobian(s.n_k, s.omega_o, s.interface.eta, s.boundary_curvature,
+                                    g.r_jk);
 }
 
 double walk_pdf(const SneeSuffix& s, const SuffixGeometry& g) {

@@ -42,6 +42,9 @@ struct SneeSuffix {
   // sphere boundary, a directional light, and x_j within the walk's depth limit. It finds every
   // exit point, so then it can produce the suffix whenever x_j is a medium vertex.
   bool manifold = false;
+  // The probability that it runs at x_j (SneeOptions::manifold_rate when x_i is a medium vertex,
+  // 1 otherwise).
+  float manifold_rate = 1;
   // How fast the outward normal turns per unit length along the boundary at x_k (1 / radius).
   float boundary_curvature = 0;
 };

@@ -1,0 +1,72 @@
+// Refracted next-event estimation through a closed, flat-shaded triangle mesh under a
+// directional light (docs/method.md 3.13): the exit points y from which the light, refracted
+// into the mesh, travels straight to a given interior point x. On a flat facet the refracted
+// light is one parallel beam of direction omega_r, so a facet holds a solution exactly when the
+// ray from x backwards along its omega_r hits it; the solutions are enumerated exactly, as
+// Walter et al. (2009) do for triangle-mesh boundaries, by a tree over the facets lit by the
+// light whose nodes bound their positions and their beams' directions, so that only nodes whose
+// box some beam through x could come from are opened.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/math.h"
+#include "scene/scene.h"
+
+namespace snee {
+
+// Most exit points one query returns (more are counted as dropped). A point inside the bunny sees
+// the light through 0 to 4 facets mostly, and up to about 30 (most of them behind another part
+// of the mesh, which the connection's rays find).
+inline constexpr int kMaxMeshExits = 64;
+
+struct MeshExit {
+  Vec3 y;        // exit point on the facet
+  Vec3 n;        // the facet's outward normal
+  Vec3 omega_r;  // unit propagation direction of the refracted light inside, from y toward x
+  double t = 0;  // |x - y|
+};
+
+struct MeshExits {
+  std::array<MeshExit, kMaxMeshExits> exit{};
+  int count = 0;
+  int dropped = 0;  // solutions beyond kMaxMeshExits (none seen in tests)
+};
+
+class FacetExitTree {
+ public:
+  // The facets of `mesh` (world space, outward winding) that face `light` (unit direction
+  // toward it) and refract it into the inside (relative index eta = inside / outside).
+  FacetExitTree(const TriangleMesh& mesh, float eta, Vec3 light);
+
+  Vec3 light() const { return light_; }
+
+  // Every exit point whose refracted beam passes through x (which should lie inside). Whether
+  // the beam reaches x unblocked, and the light reaches y, is for the caller's rays to decide.
+  MeshExits exits_toward(Vec3 x) const;
+
+ private:
+  struct Facet {
+    Vec3 p0, e1, e2;  // corner and edges
+    Vec3 n;
+    Vec3 omega_r;
+  };
+  struct Node {
+    Vec3 centre;       // of the facets' bounding box
+    float radius = 0;  // of the sphere around that box
+    Vec3 axis;         // of the cone holding every facet's omega_r
+    // Its half-angle's cosine and sine; a cone wider than a hemisphere is never closed.
+    float cos_half_angle = -1, sin_half_angle = 0;
+    uint32_t first = 0, count = 0;  // facets of a leaf; count 0: children at index + 1, second
+    uint32_t second = 0;
+  };
+  uint32_t build(uint32_t first, uint32_t count);
+
+  Vec3 light_;
+  std::vector<Facet> facets_;
+  std::vector<Node> nodes_;
+};
+
+}  // namespace snee
