@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "core/vec3d.h"
 
@@ -10,12 +9,12 @@ namespace snee {
 
 namespace {
 
-// One facet per leaf measured fastest on the bunny (5.0 us a query against 5.4 for four): the
-// leaf's cone test is then nearly the facet's own.
+// Leaves of one facet measured fastest on the bunny (the leaf's bound is then nearly the
+// facet's own test).
 constexpr uint32_t kLeafFacets = 1;
-// Slack on every bound (radians, and relative on radii), so that rounding in float storage never
-// closes a node that holds a solution.
-constexpr double kAngleSlack = 1e-5;
+// Slack on every range relative to the scene's coordinates, so that rounding in float storage
+// never closes a node that holds a solution.
+constexpr double kRelativeSlack = 1e-5;
 
 // The refraction of light arriving from direction `light` (unit, toward the light) through a
 // surface of outward normal n into the inside, as a unit propagation direction; zero when the
@@ -31,6 +30,10 @@ Vec3d refracted_inward(const Vec3d& n, const Vec3d& light, double eta) {
 
 FacetExitTree::FacetExitTree(const TriangleMesh& mesh, float eta, Vec3 light) : light_(light) {
   const Vec3d l = normalize(Vec3d(light));
+  along_ = -l;
+  across_a_ = normalize(std::abs(l.x) < 0.9 ? cross(l, Vec3d(1, 0, 0)) : cross(l, Vec3d(0, 1, 0)));
+  across_b_ = cross(along_, across_a_);
+  double scale = 0;
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const Vec3& p0 = mesh.positions[mesh.indices[3 * t]];
     const Vec3& p1 = mesh.positions[mesh.indices[3 * t + 1]];
@@ -38,51 +41,46 @@ FacetExitTree::FacetExitTree(const TriangleMesh& mesh, float eta, Vec3 light) : 
     const Vec3d area = cross(Vec3d(p1) - Vec3d(p0), Vec3d(p2) - Vec3d(p0));
     if (!(length(area) > 0)) continue;
     const Vec3d n = normalize(area);
+    // Facing the light, the refracted beam runs within 90 degrees of the light's travel (it
+    // turns toward the inward normal by less than the incidence angle), so its tilt is finite.
     const Vec3d omega_r = refracted_inward(n, l, eta);
-    if (!(dot(omega_r, omega_r) > 0)) continue;
+    if (!(dot(omega_r, along_) > 0)) continue;
     facets_.push_back({p0, p1 - p0, p2 - p0, Vec3(n), Vec3(omega_r)});
+    for (const Vec3& p : {p0, p1, p2}) {
+      scale =
+          std::max({scale, std::abs(double{p.x}), std::abs(double{p.y}), std::abs(double{p.z})});
+    }
   }
+  slack_ = kRelativeSlack * scale;
   if (!facets_.empty()) {
     nodes_.reserve(2 * facets_.size() / kLeafFacets + 1);
     build(0, static_cast<uint32_t>(facets_.size()));
   }
 }
 
+Vec3d FacetExitTree::beam_space(Vec3d p) const {
+  return {dot(p, across_a_), dot(p, across_b_), dot(p, along_)};
+}
+
 uint32_t FacetExitTree::build(uint32_t first, uint32_t count) {
   const uint32_t index = static_cast<uint32_t>(nodes_.size());
   nodes_.emplace_back();
-  Vec3 lo(kInfinity), hi(-kInfinity), centroid_lo(kInfinity), centroid_hi(-kInfinity);
-  Vec3d direction_sum;
+  Node node;
+  const auto widen = [](Range& r, double lo, double hi) {
+    r.add(static_cast<float>(lo));
+    r.add(static_cast<float>(hi));
+  };
   for (uint32_t i = first; i < first + count; ++i) {
     const Facet& f = facets_[i];
     for (const Vec3& p : {f.p0, f.p0 + f.e1, f.p0 + f.e2}) {
-      lo = vmin(lo, p);
-      hi = vmax(hi, p);
+      const Vec3d q = beam_space(Vec3d(p));
+      widen(node.a, q.x - slack_, q.x + slack_);
+      widen(node.b, q.y - slack_, q.y + slack_);
+      widen(node.h, q.z - slack_, q.z + slack_);
     }
-    const Vec3 centroid = f.p0 + (f.e1 + f.e2) / 3.0f;
-    centroid_lo = vmin(centroid_lo, centroid);
-    centroid_hi = vmax(centroid_hi, centroid);
-    direction_sum = direction_sum + Vec3d(f.omega_r);
-  }
-  Node node;
-  const Vec3d centre = 0.5 * (Vec3d(lo) + Vec3d(hi));
-  node.centre = Vec3(centre);
-  // Around the float centre, the box's half diagonal plus the centre's rounding.
-  node.radius = static_cast<float>((1.0 + kAngleSlack) * (0.5 * length(Vec3d(hi) - Vec3d(lo)) +
-                                                          length(Vec3d(node.centre) - centre)));
-  if (length(direction_sum) > 0) {
-    const Vec3d axis = normalize(direction_sum);
-    double half_angle = 0;
-    for (uint32_t i = first; i < first + count; ++i) {
-      half_angle = std::max(half_angle,
-                            std::acos(std::clamp(dot(axis, Vec3d(facets_[i].omega_r)), -1.0, 1.0)));
-    }
-    half_angle += kAngleSlack;
-    node.axis = Vec3(axis);
-    if (half_angle < 0.5 * std::numbers::pi) {
-      node.cos_half_angle = static_cast<float>(std::cos(half_angle));
-      node.sin_half_angle = static_cast<float>(std::sin(half_angle));
-    }
+    const Vec3d w = beam_space(Vec3d(f.omega_r));
+    widen(node.tilt_a, w.x / w.z - kRelativeSlack, w.x / w.z + kRelativeSlack);
+    widen(node.tilt_b, w.y / w.z - kRelativeSlack, w.y / w.z + kRelativeSlack);
   }
   if (count <= kLeafFacets) {
     node.first = first;
@@ -90,10 +88,25 @@ uint32_t FacetExitTree::build(uint32_t first, uint32_t count) {
     nodes_[index] = node;
     return index;
   }
-  const Vec3 extent = centroid_hi - centroid_lo;
+  // Split at the median of the centroids' widest beam-space coordinate (measured on the bunny:
+  // 244 nodes opened a query, against 261 splitting along world axes; splitting by tilt too
+  // opened more).
+  const auto centroid = [this](const Facet& f) {
+    return beam_space(Vec3d(f.p0 + (f.e1 + f.e2) / 3.0f));
+  };
+  Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
+  for (uint32_t i = first; i < first + count; ++i) {
+    const Vec3d c = centroid(facets_[i]);
+    lo = {std::min(lo.x, c.x), std::min(lo.y, c.y), std::min(lo.z, c.z)};
+    hi = {std::max(hi.x, c.x), std::max(hi.y, c.y), std::max(hi.z, c.z)};
+  }
+  const Vec3d extent = hi - lo;
   const int axis =
       extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-  const auto key = [axis](const Facet& f) { return (f.p0 + (f.e1 + f.e2) / 3.0f)[axis]; };
+  const auto key = [&centroid, axis](const Facet& f) {
+    const Vec3d c = centroid(f);
+    return axis == 0 ? c.x : (axis == 1 ? c.y : c.z);
+  };
   const uint32_t half = count / 2;
   std::nth_element(facets_.begin() + first, facets_.begin() + first + half,
                    facets_.begin() + first + count,
@@ -108,23 +121,27 @@ MeshExits FacetExitTree::exits_toward(Vec3 x_in) const {
   MeshExits out;
   if (nodes_.empty()) return out;
   const Vec3d x(x_in);
+  const Vec3d xb = beam_space(x);
+  // A beam from y reaches x after rising by dh = h(x) - h(y) > 0, having moved across by its
+  // tilt times dh. Over a node, dh runs over [h(x) - h.hi, h(x) - h.lo] (clamped at 0) and the
+  // tilt over its range, so x's lateral coordinate must lie in the node's range widened by the
+  // products' extremes (dh >= 0, so each extreme takes dh at the end the tilt's sign selects).
+  const auto reaches = [](double x_lateral, const Range& lateral, const Range& tilt, double dh_lo,
+                          double dh_hi) {
+    const double low = lateral.lo + (tilt.lo >= 0 ? dh_lo : dh_hi) * tilt.lo;
+    const double high = lateral.hi + (tilt.hi >= 0 ? dh_hi : dh_lo) * tilt.hi;
+    return x_lateral >= low && x_lateral <= high;
+  };
   uint32_t stack[64];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const uint32_t index = stack[--top];
     const Node& node = nodes_[index];
-    // A beam from a point of the node's sphere reaching x runs along x - y, within
-    // beta = asin(radius / D) of d = x - centre; the node can hold a solution only if its cone
-    // of beam directions (half-angle theta) comes that close: angle(axis, d) <= theta + beta,
-    // that is axis . d >= D cos(theta + beta) = cos(theta) sqrt(D^2 - radius^2) - sin(theta)
-    // radius (theta below a right angle, so theta + beta stays below pi).
-    const Vec3d d = x - Vec3d(node.centre);
-    const double distance2 = dot(d, d), radius = node.radius;
-    if (node.cos_half_angle >= 0 && distance2 > radius * radius &&
-        dot(d, Vec3d(node.axis)) < node.cos_half_angle * std::sqrt(distance2 - radius * radius) -
-                                       node.sin_half_angle * radius -
-                                       kAngleSlack * std::sqrt(distance2)) {
+    if (!(xb.z > node.h.lo)) continue;
+    const double dh_lo = std::max(0.0, xb.z - node.h.hi), dh_hi = xb.z - node.h.lo;
+    if (!reaches(xb.x, node.a, node.tilt_a, dh_lo, dh_hi) ||
+        !reaches(xb.y, node.b, node.tilt_b, dh_lo, dh_hi)) {
       continue;
     }
     if (node.count == 0) {

@@ -4,15 +4,20 @@
 // light is one parallel beam of direction omega_r, so a facet holds a solution exactly when the
 // ray from x backwards along its omega_r hits it; the solutions are enumerated exactly, as
 // Walter et al. (2009) do for triangle-mesh boundaries, by a tree over the facets lit by the
-// light whose nodes bound their positions and their beams' directions, so that only nodes whose
-// box some beam through x could come from are opened.
+// light, so that only nodes some beam through x could come from are opened. Its bounds live in
+// "beam space": height h along the light's travel and two coordinates (a, b) across it, where
+// every beam rises (omega_r turns from the light's travel by less than 90 degrees) and moves
+// across by its tilt (omega_r's across components over its along component) per unit of
+// height; a node bounds its facets' coordinates and their beams' tilts.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
 
 #include "core/math.h"
+#include "core/vec3d.h"
 #include "scene/scene.h"
 
 namespace snee {
@@ -53,18 +58,26 @@ class FacetExitTree {
     Vec3 n;
     Vec3 omega_r;
   };
+  // An interval of one beam-space coordinate (a, b or h) or tilt (da/dh or db/dh).
+  struct Range {
+    float lo = kInfinity, hi = -kInfinity;
+    void add(float v) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  };
   struct Node {
-    Vec3 centre;       // of the facets' bounding box
-    float radius = 0;  // of the sphere around that box
-    Vec3 axis;         // of the cone holding every facet's omega_r
-    // Its half-angle's cosine and sine; a cone wider than a hemisphere is never closed.
-    float cos_half_angle = -1, sin_half_angle = 0;
+    Range a, b, h;                  // the facets' vertices, in beam space
+    Range tilt_a, tilt_b;           // their beams' tilts
     uint32_t first = 0, count = 0;  // facets of a leaf; count 0: children at index + 1, second
     uint32_t second = 0;
   };
   uint32_t build(uint32_t first, uint32_t count);
+  Vec3d beam_space(Vec3d p) const;
 
   Vec3 light_;
+  Vec3d across_a_, across_b_, along_;  // beam space's axes
+  double slack_ = 0;                   // on every range, for the rounding of float storage
   std::vector<Facet> facets_;
   std::vector<Node> nodes_;
 };
