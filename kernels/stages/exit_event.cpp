@@ -148,8 +148,8 @@ namespace {
 // and reflected specularly inside the sphere before it reaches x_j. No other strategy makes
 // these paths under a delta light, so each counts with weight 1, over the probability of having
 // searched its reflection count (`u`) at a vertex where the strategy ran (`rate`). The walk
-// would have spent one depth per reflection and
-// one for the exit, so chains stop where the path tracer's depth limit would.
+// would have spent one depth per reflection and one for the exit, so chains stop where the path
+// tracer's depth limit would.
 void connect_reflection_chains(const KernelContext& ctx, const PathState& state, uint32_t slot,
                                const MediumInfo& m, const Shape& sphere,
                                const DielectricParams& interface, const LightSample& light, float u,
@@ -253,11 +253,11 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
       is_black(light.radiance)) {
     return;
   }
-  const FacetExitTree* mesh = m.manifold_tree(light.wi);
-  if (m.manifold_boundary < 0 || (m.manifold_mesh && mesh == nullptr)) {
+  if (!m.manifold_solves_for(light.wi)) {
     counters.count(SneeCounter::kManifoldUnsupportedBoundary);
     return;
   }
+  const FacetExitTree* mesh = m.manifold_tree(light.wi);
   const size_t boundary = static_cast<size_t>(m.manifold_boundary);
   const DielectricParams& interface = ctx.surfaces[boundary].dielectric;
   const Vec3 w_before = state.direction_in_j(slot);

@@ -284,8 +284,7 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
         // The manifold strategy would run at this x_j if the walk reached it (medium_event:
         // depth below the limit; docs/method.md 3.10).
         const LightSample& light = scratch.lights.samples[i];
-        if (m.manifold_boundary >= 0 && light.delta && std::isinf(light.distance) &&
-            (!m.manifold_mesh || m.manifold_tree(light.wi) != nullptr) &&
+        if (light.delta && std::isinf(light.distance) && m.manifold_solves_for(light.wi) &&
             state.depth[s] + 1 < static_cast<uint32_t>(ctx.max_depth)) {
           p.suffix.manifold = true;
           p.suffix.manifold_rate = ctx.snee.manifold_rate;

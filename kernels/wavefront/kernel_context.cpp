@@ -109,13 +109,10 @@ bool nothing_reaches_into(const Scene& s, size_t sphere) {
   return true;
 }
 
-// A mesh boundary's exit trees for the manifold strategy, one per directional light; built for
-// snee only, the one integrator that queries them.
+// A mesh boundary's exit trees for the manifold strategy, one per directional light.
 std::shared_ptr<const std::vector<FacetExitTree>> facet_exit_trees(const Scene& s,
-                                                                   const Shape& mesh, float eta,
-                                                                   Integrator integrator) {
+                                                                   const Shape& mesh, float eta) {
   auto trees = std::make_shared<std::vector<FacetExitTree>>();
-  if (integrator != Integrator::kSnee) return trees;
   for (const Light& light : s.lights) {
     if (light.kind == LightKind::kDirectional) trees->emplace_back(mesh.mesh, eta, light.direction);
   }
@@ -183,8 +180,10 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       m.chain_search = chain_search_probability(m.medium.sigma_t, shape.radius);
     } else if (only_boundary && shape.kind == ShapeKind::kMesh && shape.closed &&
                !shape.smooth_shading) {
-      m.manifold_boundary = static_cast<int32_t>(i);
-      m.manifold_mesh = facet_exit_trees(s, shape, info.dielectric.eta, integ);
+      if (integ == Integrator::kSnee) {
+        m.manifold_boundary = static_cast<int32_t>(i);
+        m.manifold_mesh = facet_exit_trees(s, shape, info.dielectric.eta);
+      }
     } else {
       m.manifold_unsupported = true;
     }

@@ -74,7 +74,8 @@ struct MediumInfo {
   // The boundary's curvature as the manifold strategy's Jacobian takes it: 1 / radius for the
   // sphere, 0 for a mesh's flat facets.
   float manifold_curvature = 0.0f;
-  // A mesh boundary's exit trees, one per directional light of the scene (for snee only).
+  // A mesh boundary's exit trees, one per directional light of the scene; null for a sphere.
+  // Built for snee only, the one integrator that runs the manifold strategy.
   std::shared_ptr<const std::vector<FacetExitTree>> manifold_mesh = nullptr;
   // Whether the boundary is a smooth dielectric the manifold strategy has no solver for (a
   // smooth-shaded mesh, or several shapes): its single-scattered light under a directional
@@ -94,6 +95,12 @@ struct MediumInfo {
       if (tree.light() == light) return &tree;
     }
     return nullptr;
+  }
+  // Whether the manifold strategy finds this medium's exit points for the directional light
+  // along `light`: a sphere boundary, or a mesh with a tree for that light. Both the strategy
+  // (connect_manifold) and top-to-bottom's view of it (subdivision) ask this.
+  bool manifold_solves_for(Vec3 light) const {
+    return manifold_boundary >= 0 && (!manifold_mesh || manifold_tree(light) != nullptr);
   }
 };
 
