@@ -11,9 +11,8 @@
 
 #include "benchmarks/bench_inputs.h"
 #include "kernels/physics/snee/snee_strategies.h"
-#include "kernels/simd/bottom_to_top_batch.h"
+#include "kernels/physics/snee/subdivision_vertices.h"
 #include "kernels/simd/snee_weights_batch.h"
-#include "kernels/simd/top_to_bottom_batch.h"
 
 namespace snee {
 namespace {
@@ -123,7 +122,7 @@ void BM_SneeProposeTopToBottomSimd(benchmark::State& state) {
       }
       std::array<simd::FloatBatch, kTopToBottomDimensions> u;
       for (int n = 0; n < kTopToBottomDimensions; ++n) u[n] = e.numbers(k, n);
-      const simd::TopToBottomBatch b = simd::propose_top_to_bottom(
+      const TopToBottomVertex<simd::FloatBatch> b = top_to_bottom_vertex<simd::FloatBatch>(
           {e.vector(k, x_i_of),
            e.vector(k, omega_in_of),
            e.vector(k, x_k_of),
@@ -181,7 +180,7 @@ void BM_SneeProposeBottomToTopSimd(benchmark::State& state) {
       std::array<simd::FloatBatch, kBottomToTopDimensions> u;
       for (int n = 0; n < kBottomToTopDimensions; ++n)
         u[n] = e.numbers(k, kTopToBottomDimensions + n);
-      const simd::BottomToTopBatch b = simd::propose_bottom_to_top(
+      const BottomToTopVertex<simd::FloatBatch> b = bottom_to_top_vertex<simd::FloatBatch>(
           {e.vector(k, x_i_of), e.vector(k, omega_in_of), e.vector(k, x_k_of), e.vector(k, n_k_of),
            e.vector(k, ns_k_of), simd::FloatBatch(e.medium.g), dielectric},
           e.options, u);

@@ -38,6 +38,9 @@ inline double sqrt(double x) {
 inline float abs(float x) {
   return std::fabs(x);
 }
+inline double abs(double x) {
+  return std::fabs(x);
+}
 
 // Selection between masks (bool, or a batch of booleans, which xsimd's select does not take).
 template <class M>
@@ -74,6 +77,21 @@ struct ops<float> {
   // libm's sine and cosine, as the scalar functions always called them.
   static std::pair<float, float> sincos(float x) { return {std::sin(x), std::cos(x)}; }
   static std::pair<float, float> libm_sincos(float x) { return sincos(x); }
+  static float atan2(float y, float x) { return std::atan2(y, x); }
+};
+
+// Double lanes are the scalar functions of the SNEE densities and samplers (kernels/physics/snee/):
+// their products of inverse squares need double's range where vertices nearly coincide.
+template <>
+struct ops<double> {
+  static constexpr bool is_lane = true;
+  static double neg(double x) { return -x; }
+  static double copysign(double magnitude, double sign) { return std::copysign(magnitude, sign); }
+  static double exp(double x) { return std::exp(x); }
+  static double log1p(double x) { return std::log1p(x); }
+  static std::pair<double, double> sincos(double x) { return {std::sin(x), std::cos(x)}; }
+  static std::pair<double, double> libm_sincos(double x) { return sincos(x); }
+  static double atan2(double y, double x) { return std::atan2(y, x); }
 };
 
 template <class F>
@@ -88,7 +106,7 @@ template <Lane F>
 F copysign(F magnitude, F sign) {
   return ops<F>::copysign(magnitude, sign);
 }
-// Call these two qualified (lane::exp): unqualified, argument-dependent lookup would also find
+// Call these three qualified (lane::exp): unqualified, argument-dependent lookup would also find
 // xsimd's own for a batch, which rounds differently from one SIMD width to another.
 template <Lane F>
 F exp(F x) {
@@ -97,6 +115,10 @@ F exp(F x) {
 template <Lane F>
 F log1p(F x) {
   return ops<F>::log1p(x);
+}
+template <Lane F>
+F atan2(F y, F x) {
+  return ops<F>::atan2(y, x);
 }
 // {sin x, cos x}.
 template <Lane F>
@@ -114,7 +136,8 @@ std::pair<F, F> libm_sincos(F x) {
 template <class F>
 using MaskOf = decltype(std::declval<F>() < std::declval<F>());
 
-// The 3-vector whose components are F (core/math.h: Vec3 for float; kernels/simd: Vec3Batch).
+// The 3-vector whose components are F (core/math.h: Vec3 for float; core/vec3d.h: Vec3d for
+// double; kernels/simd: Vec3Batch).
 template <class F>
 struct vec3_of;
 template <class F>

@@ -1,6 +1,7 @@
 // A double-precision 3-vector for the geometry solves that float cannot carry: refraction roots
 // near grazing exits, the equiangular step's angles, a ray's hit on a facet far from its origin.
-// Only those solves use it; everything stored and traced stays Vec3.
+// Only those solves, and the double lane type of the SNEE densities and samplers
+// (core/lane_math.h), use it; everything stored and traced stays Vec3.
 #pragma once
 
 #include <cmath>
@@ -20,9 +21,20 @@ struct Vec3d {
   Vec3d operator+(const Vec3d& b) const { return {x + b.x, y + b.y, z + b.z}; }
   Vec3d operator-(const Vec3d& b) const { return {x - b.x, y - b.y, z - b.z}; }
   Vec3d operator-() const { return {-x, -y, -z}; }
+  Vec3d operator*(const Vec3d& b) const { return {x * b.x, y * b.y, z * b.z}; }
   Vec3d operator*(double s) const { return {x * s, y * s, z * s}; }
   Vec3d operator/(double s) const { return {x / s, y / s, z / s}; }
 };
+template <>
+struct lane::vec3_of<double> {
+  using type = Vec3d;
+};
+// Found by argument-dependent lookup from the lane-generic templates, which may be defined before
+// this header is included.
+inline Vec3d select(bool m, const Vec3d& a, const Vec3d& b) {
+  return m ? a : b;
+}
+
 inline Vec3d operator*(double s, const Vec3d& v) {
   return {s * v.x, s * v.y, s * v.z};
 }

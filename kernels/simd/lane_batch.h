@@ -72,6 +72,9 @@ struct ops<simd::FloatBatch> {
   }
   static simd::FloatBatch exp(simd::FloatBatch x) { return simd::exp(x); }
   static simd::FloatBatch log1p(simd::FloatBatch x) { return simd::log1p(x); }
+  static simd::FloatBatch atan2(simd::FloatBatch y, simd::FloatBatch x) {
+    return simd::atan2(y, x);
+  }
   static std::pair<simd::FloatBatch, simd::FloatBatch> sincos(simd::FloatBatch x) {
     return simd::lanewise_sincos(x);
   }

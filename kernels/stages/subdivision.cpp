@@ -2,11 +2,10 @@
 #include <cmath>
 
 #include "kernels/physics/snee/snee_strategies.h"
-#include "kernels/simd/bottom_to_top_batch.h"
+#include "kernels/physics/snee/subdivision_vertices.h"
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/slot_chunk.h"
 #include "kernels/simd/snee_weights_batch.h"
-#include "kernels/simd/top_to_bottom_batch.h"
 #include "kernels/stages/stages.h"
 #include "kernels/wavefront/batched_pass.h"
 #include "kernels/wavefront/medium_lanes.h"
@@ -90,19 +89,19 @@ void sample_top_to_bottom_chunk(const KernelContext& ctx, const ChunkExits& e,
   std::array<FloatBatch, kTopToBottomDimensions> u;
   for (int n = 0; n < kTopToBottomDimensions; ++n)
     u[n] = FloatBatch::load_aligned(scratch.randoms.top_to_bottom(n).data() + k);
-  const simd::TopToBottomBatch tb =
-      simd::propose_top_to_bottom({e.x_i,
-                                   e.omega_in,
-                                   e.x_k,
-                                   e.n_k,
-                                   e.ns_k,
-                                   e.medium.g,
-                                   e.medium.sigma_t,
-                                   e.interface,
-                                   {at(lights.wx), at(lights.wy), at(lights.wz)},
-                                   at(lights.pdf),
-                                   at(lights.delta) != FloatBatch(0.0f)},
-                                  ctx.snee, u);
+  const TopToBottomVertex<FloatBatch> tb =
+      top_to_bottom_vertex<FloatBatch>({e.x_i,
+                                        e.omega_in,
+                                        e.x_k,
+                                        e.n_k,
+                                        e.ns_k,
+                                        e.medium.g,
+                                        e.medium.sigma_t,
+                                        e.interface,
+                                        {at(lights.wx), at(lights.wy), at(lights.wz)},
+                                        at(lights.pdf),
+                                        at(lights.delta) != FloatBatch(0.0f)},
+                                       ctx.snee, u);
   simd::store_aligned(tb.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   tb.pdf.store_aligned(out.pdf.data() + k);
   store_status(tb.refracted, tb.distanced, kSneeNotRefracted, kSneeNoDistance,
@@ -115,7 +114,7 @@ void sample_bottom_to_top_chunk(const KernelContext& ctx, const ChunkExits& e,
   std::array<simd::FloatBatch, kBottomToTopDimensions> u;
   for (int n = 0; n < kBottomToTopDimensions; ++n)
     u[n] = simd::FloatBatch::load_aligned(randoms.bottom_to_top(n).data() + k);
-  const simd::BottomToTopBatch bt = simd::propose_bottom_to_top(
+  const BottomToTopVertex<simd::FloatBatch> bt = bottom_to_top_vertex<simd::FloatBatch>(
       {e.x_i, e.omega_in, e.x_k, e.n_k, e.ns_k, e.medium.g, e.interface}, ctx.snee, u);
   simd::store_aligned(bt.x_j, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   simd::store_aligned(bt.omega_o, out.wx.data() + k, out.wy.data() + k, out.wz.data() + k);

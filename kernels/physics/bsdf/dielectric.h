@@ -234,4 +234,30 @@ Refracted<F> dielectric_sample_transmission(const DielectricT<F>& p, const lane:
   return s;
 }
 
+// A transmission pair through a rough interface in its local frame (outward normal +z):
+// local_in on the medium side, local_out outside. Its generalised half vector (oriented to +z)
+// and dielectric_transmission_pdf in both directions, which share it.
+template <lane::Lane F>
+struct TransmissionPair {
+  lane::Vec3Of<F> h;
+  F inward;   // pdf of local_in given local_out (light side to medium side)
+  F outward;  // pdf of local_out given local_in
+};
+
+template <lane::Lane F>
+TransmissionPair<F> transmission_pair(const DielectricT<F>& p, const lane::Vec3Of<F>& local_in,
+                                      const lane::Vec3Of<F>& local_out) {
+  using namespace lane;
+  const F zero(0.0f);
+  Vec3Of<F> h = local_in * p.eta + local_out;
+  h = h / sqrt(dot(h, h));
+  h = select(h.z < zero, -h, h);
+  const F in_h = dot(local_in, h), out_h = dot(local_out, h);
+  const MaskOf<F> ok = h.z > zero && in_h * local_in.z > zero && out_h * local_out.z > zero &&
+                       local_in.z * local_out.z < zero;
+  const F denom = out_h + p.eta * in_h;
+  const F d_h = ggx_d(h, p.alpha) * h.z / (denom * denom);
+  return {h, select(ok, d_h * p.eta * p.eta * abs(in_h), zero), select(ok, d_h * abs(out_h), zero)};
+}
+
 }  // namespace snee

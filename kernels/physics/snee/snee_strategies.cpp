@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kernels/physics/snee/distance_samplers.h"
-#include "kernels/physics/snee/joint_importance.h"
-#include "kernels/physics/snee/probe.h"
-#include "kernels/physics/snee/snee_integrand.h"
+#include "core/vec3d.h"
 #include "kernels/physics/snee/snee_pdfs.h"
+#include "kernels/physics/snee/subdivision_vertices.h"
 
 namespace snee {
 
@@ -52,6 +50,17 @@ SneeProposal proposal(const SneeSuffix& s, Rgb emitted, double sampling_pdf,
   return p;
 }
 
+template <size_t N>
+std::array<double, N> in_double(std::span<const float, N> u) {
+  std::array<double, N> out;
+  for (size_t n = 0; n < N; ++n) out[n] = u[n];
+  return out;
+}
+
+DielectricT<double> in_double(const DielectricParams& interface) {
+  return {interface.eta, interface.alpha};
+}
+
 SneeProposal failed_proposal(SneeFailure why) {
   SneeProposal p;
   p.failure = why;
@@ -70,47 +79,15 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
   if (!lights_exit_point(light, exit.n_k, exit.ns_k)) {
     return failed_proposal(SneeFailure::kNoLight);
   }
-  const double cos_o = dot(exit.ns_k, light.wi);
-
-  // Inward direction: transmission lobe only, given the light-side direction, in the shading
-  // frame; it must enter by the geometric normal too.
-  const Frame frame = Frame::from_normal(exit.ns_k);
-  const Vec3 local_o = frame.to_local(light.wi);
-  Vec3 local_kj;
-  if (!dielectric_sample_transmission(
-          exit.interface, local_o, Vec2{u[R::kInwardNormal], u[R::kInwardNormal + 1]}, &local_kj)) {
-    return failed_proposal(SneeFailure::kRefraction);
-  }
-  const Vec3 omega_kj = normalize(frame.to_world(local_kj));
-  const double cos_kj = -dot(exit.ns_k, omega_kj);
-  if (!(cos_kj > 0) || !(dot(exit.n_k, omega_kj) < 0)) {
-    return failed_proposal(SneeFailure::kRefraction);
-  }
-
-  const DistanceMixture mixture{medium.sigma_t, options.c_exponential, exit.x_k, omega_kj,
-                                origin.x_i};
-  const DistanceSample distance = distance_mixture_sample(mixture, u[R::kDistanceTechnique],
-                                                          u[R::kDistanceChannel], u[R::kDistance]);
-  if (!distance.valid || !(distance.t > 0)) return failed_proposal(SneeFailure::kZero);
-  const Vec3 x_j = exit.x_k + distance.t * omega_kj;
-
-  // Density of what was just sampled, in the suffix's measure (see top_to_bottom_pdf): the
-  // inward direction's solid angle at x_k becomes x_j's volume by 1 / t^2, except with a smooth
-  // interface and a delta light (case D), whose measure is the distance along the ray.
-  const double t = distance.t;
-  double pdf =
-      probe_area_pdf(options.probe, origin.omega_in, medium.g, origin.x_i, exit.x_k, exit.n_k) *
-      light.pdf * distance.pdf;
-  if (!exit.interface.delta()) {
-    pdf *= dielectric_transmission_pdf(exit.interface, local_o, local_kj) / (t * t);
-  } else if (!light.delta) {
-    // The refracted direction is deterministic; the refraction Jacobian relates its solid
-    // angle to omega_o's.
-    const double eta = exit.interface.eta;
-    pdf *= eta * eta * cos_kj / cos_o / (t * t);
-  }
-
-  return top_to_bottom_proposal(origin, medium, exit, light, epsilon, x_j, pdf);
+  const TopToBottomVertex<double> v = top_to_bottom_vertex<double>(
+      {Vec3d(origin.x_i), Vec3d(origin.omega_in), Vec3d(exit.x_k), Vec3d(exit.n_k),
+       Vec3d(exit.ns_k), medium.g, Vec3d(medium.sigma_t), in_double(exit.interface),
+       Vec3d(light.wi), light.pdf, light.delta},
+      options, in_double(u));
+  if (!v.refracted) return failed_proposal(SneeFailure::kRefraction);
+  const Vec3 x_j(v.x_j);
+  if (!v.distanced || !is_finite(x_j)) return failed_proposal(SneeFailure::kZero);
+  return top_to_bottom_proposal(origin, medium, exit, light, epsilon, x_j, v.pdf);
 }
 
 SneeProposal top_to_bottom_proposal(const SneeOrigin& origin, const SneeMedium& medium,
@@ -129,42 +106,14 @@ SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
                                    const ExitPoint& exit, const LightTable& lights,
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kBottomToTopDimensions> u) {
-  const JointImportance jis{origin.x_i, origin.omega_in, exit.x_k, medium.g, options.c_joint};
-  using R = BottomToTopRandoms;
-  const JointImportanceSample placed =
-      joint_importance_sample(jis, u.subspan<R::kPlacement, kJointImportanceDimensions>());
-  if (!placed.valid) return failed_proposal(SneeFailure::kPlacement);
-  const Vec3 x_j = placed.x_j;
-  const Vec3 to_k = exit.x_k - x_j;
-  const float r_jk = length(to_k);
-  if (!(r_jk > 0)) return failed_proposal(SneeFailure::kPlacement);
-  const Vec3 omega_kj = -to_k / r_jk;
-  // x_j must lie on the medium side of x_k, by both normals.
-  if (!(dot(exit.n_k, omega_kj) < 0) || !(dot(exit.ns_k, omega_kj) < 0)) {
-    return failed_proposal(SneeFailure::kPlacement);
-  }
-
-  // Outward direction: transmission lobe only, given the medium-side direction, in the shading
-  // frame; it must leave by the geometric normal too.
-  const Frame frame = Frame::from_normal(exit.ns_k);
-  const Vec3 local_kj = frame.to_local(omega_kj);
-  Vec3 local_o;
-  if (!dielectric_sample_transmission(exit.interface, local_kj,
-                                      Vec2{u[R::kOutwardNormal], u[R::kOutwardNormal + 1]},
-                                      &local_o)) {
-    return failed_proposal(SneeFailure::kRefraction);
-  }
-  const Vec3 omega_o = normalize(frame.to_world(local_o));
-  if (!(dot(exit.ns_k, omega_o) > 0) || !(dot(exit.n_k, omega_o) > 0)) {
-    return failed_proposal(SneeFailure::kRefraction);
-  }
-  double pdf =
-      probe_area_pdf(options.probe, origin.omega_in, medium.g, origin.x_i, exit.x_k, exit.n_k) *
-      placed.pdf;
-  if (!exit.interface.delta()) {
-    pdf *= dielectric_transmission_pdf(exit.interface, local_kj, local_o);
-  }
-  return bottom_to_top_proposal(origin, medium, exit, lights, epsilon, x_j, omega_o, pdf);
+  const BottomToTopVertex<double> v = bottom_to_top_vertex<double>(
+      {Vec3d(origin.x_i), Vec3d(origin.omega_in), Vec3d(exit.x_k), Vec3d(exit.n_k),
+       Vec3d(exit.ns_k), medium.g, in_double(exit.interface)},
+      options, in_double(u));
+  const Vec3 x_j(v.x_j);
+  if (!v.placed || !is_finite(x_j)) return failed_proposal(SneeFailure::kPlacement);
+  if (!v.refracted) return failed_proposal(SneeFailure::kRefraction);
+  return bottom_to_top_proposal(origin, medium, exit, lights, epsilon, x_j, Vec3(v.omega_o), v.pdf);
 }
 
 SneeProposal bottom_to_top_proposal(const SneeOrigin& origin, const SneeMedium& medium,
@@ -205,10 +154,10 @@ SneeCandidate finish_proposal(Strategy st, const SneeProposal& p, const SneeOpti
   c.failure = SneeFailure::kZero;
   if (!(p.sampling_pdf > 0) || !std::isfinite(p.sampling_pdf)) return c;
   const SneeSuffix& s = p.suffix;
-  const SuffixGeometry g = suffix_geometry(s);
-  const double weight = mis_weight(st, strategy_pdfs(s, g, options), options);
+  const SuffixWeighing<double> w = weigh_suffix(s, options);
+  const double weight = mis_weight(st, strategy_pdfs(s, w), options);
   if (!(weight > 0)) return c;
-  const Rgb f = suffix_integrand(s, g, p.emitted);
+  const Rgb f = Vec3(w.attenuation) * p.emitted * static_cast<float>(w.path);
   const Rgb contribution = f * static_cast<float>(weight / p.sampling_pdf);
   if (is_black(contribution) || !is_finite(contribution)) return c;
   c.x_j = s.x_j;
@@ -227,12 +176,12 @@ double snee_exit_weight(Strategy st, const SneeSuffix& s, const SneeOptions& opt
 }
 
 ExitWeights snee_exit_weights(Strategy st, SneeSuffix s, const SneeOptions& options) {
-  const SuffixGeometry g = suffix_geometry(s);
+  const SuffixWeighing<double> weighing = weigh_suffix(s, options);
   ExitWeights w;
   s.v_first = true;
-  w.if_first_hit = mis_weight(st, strategy_pdfs(s, g, options), options);
+  w.if_first_hit = mis_weight(st, strategy_pdfs(s, weighing), options);
   s.v_first = false;
-  w.if_not_first_hit = mis_weight(st, strategy_pdfs(s, g, options), options);
+  w.if_not_first_hit = mis_weight(st, strategy_pdfs(s, weighing), options);
   return w;
 }
 

@@ -64,8 +64,9 @@ struct SneeCandidate {
 // A strategy's sample before its MIS weight: the suffix it proposes, the light's radiance along
 // omega_o, the density of having sampled it, and the segments that must be clear. Proposing
 // branches on the light and the interface and runs one exit at a time; weighing (the four-way
-// pdfs, the weight and the integrand) is straight-line and runs either here (finish_proposal)
-// or a batch at a time (simd/snee_weights_batch.h).
+// pdfs, the weight and the integrand) is straight-line, one template (suffix_weighing.h) that
+// runs either here in double (finish_proposal) or a float batch at a time
+// (simd/snee_weights_batch.h).
 struct SneeProposal {
   SneeSuffix suffix;
   Rgb emitted{0.0f};
@@ -90,7 +91,8 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kTopToBottomDimensions> u);
 // The end of propose_top_to_bottom, once x_j is sampled with density sampling_pdf from the
-// light sample `light` (simd/top_to_bottom_batch.h does the part between): builds the proposal.
+// light sample `light` (top_to_bottom_vertex in subdivision_vertices.h does the part between):
+// builds the proposal.
 SneeProposal top_to_bottom_proposal(const SneeOrigin& origin, const SneeMedium& medium,
                                     const ExitPoint& exit, const LightSample& light, float epsilon,
                                     Vec3 x_j, double sampling_pdf);
@@ -106,7 +108,7 @@ SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
                                    const SneeOptions& options, float epsilon,
                                    std::span<const float, kBottomToTopDimensions> u);
 // The end of propose_bottom_to_top, once x_j is placed and omega_o sampled with density
-// sampling_pdf (probe, placement and outward refraction; simd/bottom_to_top_batch.h does the
+// sampling_pdf (probe, placement and outward refraction; bottom_to_top_vertex does the
 // part before): looks up the light along omega_o and builds the proposal.
 SneeProposal bottom_to_top_proposal(const SneeOrigin& origin, const SneeMedium& medium,
                                     const ExitPoint& exit, const LightTable& lights, float epsilon,

@@ -2,7 +2,8 @@
 //   x_i (medium) -> x_j (medium) -> x_k (exit point on the dielectric boundary) -> light along
 //   omega_o,
 // described once so that every strategy's pdf, the integrand and the MIS weights are computed
-// from the same data, wherever they are needed (subdivision stage or the tracer's exit events).
+// from the same data, wherever they are needed (subdivision stage or the tracer's exit events);
+// suffix_weighing.h derives its geometry.
 #pragma once
 
 #include "core/math.h"
@@ -71,30 +72,5 @@ inline SuffixMeasure suffix_measure(const SneeSuffix& s) {
 inline bool snee_can_produce(const SneeSuffix& s) {
   return s.x_i_medium && s.x_j_medium && s.v_first;
 }
-
-// Distances, directions and cosines of a suffix, derived once (double precision: the pdfs of
-// nearly coincident vertices are products of large inverse squares).
-struct SuffixGeometry {
-  double d = 0;     // |x_k - x_i|, the length of the probed edge
-  double r_ij = 0;  // |x_j - x_i|
-  double r_jk = 0;  // |x_k - x_j|
-  Vec3 omega_ik;    // unit, x_i -> x_k
-  Vec3 omega_ij;    // unit, x_i -> x_j
-  Vec3 omega_jk;    // unit, x_j -> x_k
-  // The geometric normal n_k converts between area at x_k and solid angle; the shading normal
-  // ns_k is the interface's frame: the BTDF, its cosine, Fresnel and refraction.
-  double cos_k_i = 0;          // n_k . omega_ik (> 0 when x_i is on the inner side of x_k)
-  double cos_k_j = 0;          // n_k . omega_jk (> 0 when x_j is on the inner side of x_k)
-  double cos_k_j_shading = 0;  // ns_k . omega_jk
-  double cos_o = 0;            // ns_k . omega_o
-  Vec3 local_kj;  // omega_kj = -omega_jk in the shading frame at x_k (outward normal = +z)
-  Vec3 local_o;   // omega_o in the same frame
-  // The side rule at x_k: x_j lies inside and omega_o outside by both normals, so the path
-  // crosses the boundary as its BTDF in the shading frame says (zero contribution otherwise).
-  bool crosses = false;
-  // False for coincident vertices, where no density is defined.
-  bool valid = false;
-};
-SuffixGeometry suffix_geometry(const SneeSuffix& s);
 
 }  // namespace snee
