@@ -13,6 +13,7 @@
 #include "kernels/physics/snee/snee_strategies.h"
 #include "kernels/physics/snee/subdivision_vertices.h"
 #include "kernels/simd/snee_weights_batch.h"
+#include "kernels/wavefront/subdivision_scratch.h"
 
 namespace snee {
 namespace {
@@ -233,15 +234,13 @@ BENCHMARK(BM_SneeWeighScalar)->Arg(0)->Arg(20);
 void BM_SneeWeighSimd(benchmark::State& state) {
   const Exits e(alpha_of(state));
   const std::vector<SneeProposal> proposals = proposals_of(e);
+  ProposalQueue queue(proposals.size());
+  for (const SneeProposal& p : proposals) queue.push(p, Strategy::kTopToBottom, 0);
   double sum = 0;
   for (auto _ : state) {
     for (size_t k = 0; k < proposals.size(); k += simd::kLanes) {
-      const simd::ProposalWeights w = simd::weigh_proposals(
-          [&](size_t l) {
-            return std::pair<const SneeProposal&, Strategy>(proposals[k + l],
-                                                            Strategy::kTopToBottom);
-          },
-          simd::kLanes, e.options);
+      const simd::ProposalWeights w =
+          simd::weigh_proposals(queue.items(), k, simd::kLanes, e.options);
       for (size_t l = 0; l < simd::kLanes; ++l) sum += w.contribution[l].x;
     }
     benchmark::DoNotOptimize(sum);

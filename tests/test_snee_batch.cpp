@@ -1,9 +1,9 @@
 // SNEE's templates instantiated over the float batch against their double instantiation (the
-// scalar functions): the weighing of proposals (kernels/physics/snee/suffix_weighing.h, gathered by
-// simd/snee_weights_batch.h) against finish_proposal, on proposals the real samplers make
-// (every interface and light measure, isotropic and forward media, thin and dense, both
-// heuristics and both probe kinds), and both strategies' straight-line parts
-// (kernels/physics/snee/subdivision_vertices.h) against propose_bottom_to_top and
+// scalar functions): the weighing of proposals (kernels/physics/snee/suffix_weighing.h, loaded
+// from the subdivision stage's ProposalQueue by simd/snee_weights_batch.h) against finish_proposal,
+// on proposals the real samplers make (every interface and light measure, isotropic and forward
+// media, thin and dense, both heuristics and both probe kinds), and both strategies' straight-line
+// parts (kernels/physics/snee/subdivision_vertices.h) against propose_bottom_to_top and
 // propose_top_to_bottom.
 #include <gtest/gtest.h>
 
@@ -18,6 +18,7 @@
 #include "kernels/physics/snee/snee_strategies.h"
 #include "kernels/physics/snee/subdivision_vertices.h"
 #include "kernels/simd/snee_weights_batch.h"
+#include "kernels/wavefront/subdivision_scratch.h"
 #include "tests/support/chi2.h"
 #include "tests/support/snee_setups.h"
 
@@ -88,23 +89,26 @@ struct Agreement {
 
 using Proposals = std::vector<std::pair<SneeProposal, Strategy>>;
 
-simd::ProposalWeights weigh(const Proposals& proposals, size_t k, size_t count,
+// The proposals in the subdivision stage's queue, which the batched weighing loads from.
+ProposalQueue queue_of(const Proposals& proposals) {
+  ProposalQueue q(proposals.size());
+  for (const auto& [p, st] : proposals) q.push(p, st, 0);
+  return q;
+}
+
+simd::ProposalWeights weigh(const ProposalQueue& q, size_t k, size_t count,
                             const SneeOptions& options) {
-  return simd::weigh_proposals(
-      [&](size_t l) {
-        return std::pair<const SneeProposal&, Strategy>(proposals[k + l].first,
-                                                        proposals[k + l].second);
-      },
-      count, options);
+  return simd::weigh_proposals(q.items(), k, count, options);
 }
 
 // Weighs `proposals` in batches, compares every lane with finish_proposal and asserts the
 // stated bounds.
 Agreement compare(const Proposals& proposals, const SneeOptions& options) {
   Agreement a;
+  const ProposalQueue q = queue_of(proposals);
   for (size_t k = 0; k < proposals.size(); k += simd::kLanes) {
     const size_t count = std::min(simd::kLanes, proposals.size() - k);
-    const simd::ProposalWeights w = weigh(proposals, k, count, options);
+    const simd::ProposalWeights w = weigh(q, k, count, options);
     for (size_t l = 0; l < count; ++l) {
       const auto& [p, st] = proposals[k + l];
       const SneeCandidate c = finish_proposal(st, p, options);
@@ -217,10 +221,11 @@ TEST(SneeWeightsBatch, LanesAreIndependentOfTheirBatch) {
   int compared = 0;
   for (const test::SneeCase& c : kCases) {
     for (const auto& [options, proposals] : proposal_sets(c, rng, 400)) {
+      const ProposalQueue q = queue_of(proposals);
       for (size_t k = 0; k + simd::kLanes <= proposals.size(); k += simd::kLanes) {
-        const simd::ProposalWeights batch = weigh(proposals, k, simd::kLanes, options);
+        const simd::ProposalWeights batch = weigh(q, k, simd::kLanes, options);
         for (size_t l = 0; l < simd::kLanes; ++l) {
-          const simd::ProposalWeights alone = weigh(proposals, k + l, 1, options);
+          const simd::ProposalWeights alone = weigh(q, k + l, 1, options);
           ASSERT_EQ(std::memcmp(&alone.weight[0], &batch.weight[l], sizeof(float)), 0);
           ASSERT_EQ(std::memcmp(&alone.contribution[0], &batch.contribution[l], sizeof(Rgb)), 0);
           ASSERT_EQ(alone.in_range[0], batch.in_range[l]);
@@ -242,12 +247,12 @@ TEST(SneeWeightsBatch, FlagsLanesBeyondFloatRange) {
   const auto& [options, proposals] = sets.front();
   ASSERT_GE(proposals.size(), simd::kLanes);
   Proposals batch(proposals.begin(), proposals.begin() + simd::kLanes);
-  const simd::ProposalWeights before = weigh(batch, 0, simd::kLanes, options);
+  const simd::ProposalWeights before = weigh(queue_of(batch), 0, simd::kLanes, options);
   SneeProposal& p = batch[0].first;
   const Vec3 omega_kj = normalize(p.suffix.x_j - p.suffix.x_k);
   p.suffix.x_j = p.suffix.x_k + 1e-21f * omega_kj;
   ASSERT_NE(p.suffix.x_j.z, p.suffix.x_k.z);
-  const simd::ProposalWeights after = weigh(batch, 0, simd::kLanes, options);
+  const simd::ProposalWeights after = weigh(queue_of(batch), 0, simd::kLanes, options);
   EXPECT_FALSE(after.in_range[0]);
   for (size_t l = 1; l < simd::kLanes; ++l) {
     EXPECT_TRUE(after.in_range[l]);

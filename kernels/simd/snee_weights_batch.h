@@ -14,6 +14,7 @@
 #include "kernels/simd/dielectric_batch.h"
 #include "kernels/simd/free_flight_batch.h"
 #include "kernels/simd/hg_sample_batch.h"
+#include "kernels/simd/slot_chunk.h"
 
 namespace snee::simd {
 
@@ -32,49 +33,30 @@ inline MisWeights<FloatBatch>::Competing enabled_strategies(const SneeOptions& o
   return competing;
 }
 
-// Fills a batch from suffix_of(l), the suffix of lane l, for lanes [0, count); the padding
-// lanes repeat lane 0.
-template <class SuffixOf>
-SuffixBatch load_suffixes(SuffixOf&& suffix_of, size_t count) {
-  constexpr int kVectors = 9, kFields = 3 * kVectors + 6;
-  alignas(64) float f[kFields][kLanes];
-  for (size_t l = 0; l < kLanes; ++l) {
-    const SneeSuffix& s = suffix_of(l < count ? l : 0);
-    const Vec3 v[kVectors] = {s.x_i,     s.omega_in,       s.x_j,           s.x_k, s.n_k, s.ns_k,
-                              s.omega_o, s.medium.sigma_s, s.medium.sigma_t};
-    for (int i = 0; i < kVectors; ++i) {
-      f[3 * i][l] = v[i].x;
-      f[3 * i + 1][l] = v[i].y;
-      f[3 * i + 2][l] = v[i].z;
-    }
-    const float scalars[] = {s.medium.g,
-                             s.interface.eta,
-                             s.interface.alpha,
-                             s.light_pdf,
-                             s.light_delta ? 1.0f : 0.0f,
-                             s.light_distant ? 1.0f : 0.0f};
-    for (int i = 0; i < 6; ++i) f[3 * kVectors + i][l] = scalars[i];
-  }
-  const auto batch = [&](int i) { return FloatBatch::load_aligned(f[i]); };
-  const auto vec = [&](int i) {
-    return Vec3Batch{batch(3 * i), batch(3 * i + 1), batch(3 * i + 2)};
+// The suffixes of proposals [k, k + count) of a structure of arrays with the fields of
+// SNEE_PROPOSAL_FIELDS (kernels/wavefront/work_items.h), in lanes; the padding lanes repeat the
+// first.
+template <class Proposals>
+SuffixBatch load_suffixes(const Proposals& q, size_t k, size_t count) {
+  const auto lanes = [&](const auto& a) { return load_padded(a.data() + k, count); };
+  const auto vec = [&](const auto& x, const auto& y, const auto& z) {
+    return Vec3Batch{lanes(x), lanes(y), lanes(z)};
   };
-  const auto flag = [&](int i) { return batch(i) != FloatBatch(0.0f); };
-  constexpr int kScalars = 3 * kVectors;
-  return {vec(0),
-          vec(1),
-          vec(2),
-          vec(3),
-          vec(4),
-          vec(5),
-          vec(6),
-          vec(7),
-          vec(8),
-          batch(kScalars),
-          {batch(kScalars + 1), batch(kScalars + 2)},
-          batch(kScalars + 3),
-          flag(kScalars + 4),
-          flag(kScalars + 5)};
+  const FloatBatch zero(0.0f);
+  return {vec(q.xi_x, q.xi_y, q.xi_z),
+          vec(q.win_x, q.win_y, q.win_z),
+          vec(q.xj_x, q.xj_y, q.xj_z),
+          vec(q.xk_x, q.xk_y, q.xk_z),
+          vec(q.nk_x, q.nk_y, q.nk_z),
+          vec(q.snk_x, q.snk_y, q.snk_z),
+          vec(q.wo_x, q.wo_y, q.wo_z),
+          vec(q.sigma_s_x, q.sigma_s_y, q.sigma_s_z),
+          vec(q.sigma_t_x, q.sigma_t_y, q.sigma_t_z),
+          lanes(q.g),
+          {lanes(q.eta), lanes(q.alpha)},
+          lanes(q.light_pdf),
+          lanes(q.light_delta) != zero,
+          lanes(q.light_distant) != zero};
 }
 
 // What finish_proposal computes, for a batch of proposals: the MIS weight of each lane's own
@@ -86,15 +68,12 @@ struct ProposalWeights {
   bool in_range[kLanes];
 };
 
-// proposal_of(l) returns lane l's proposal and strategy (top-to-bottom or bottom-to-top), for
-// lanes [0, count), 1 <= count <= kLanes.
-template <class ProposalOf>
-ProposalWeights weigh_proposals(ProposalOf&& proposal_of, size_t count,
+// The proposals [k, k + count) of q (as load_suffixes), 1 <= count <= kLanes, each weighed for
+// its own strategy.
+template <class Proposals>
+ProposalWeights weigh_proposals(const Proposals& q, size_t k, size_t count,
                                 const SneeOptions& options) {
-  const SuffixWeighingBatch w = weigh_suffix(
-      load_suffixes([&](size_t l) -> const SneeSuffix& { return proposal_of(l).first.suffix; },
-                    count),
-      options);
+  const SuffixWeighingBatch w = weigh_suffix(load_suffixes(q, k, count), options);
   alignas(64) float weight[2][kLanes], attenuation[3][kLanes], path[kLanes], pdf_sum[kLanes];
   const MisWeights<FloatBatch> mis(w.pdf, enabled_strategies(options), options.heuristic);
   mis(Strategy::kTopToBottom).store_aligned(weight[0]);
@@ -106,12 +85,13 @@ ProposalWeights weigh_proposals(ProposalOf&& proposal_of, size_t count,
   (w.pdf[0] + w.pdf[1] + w.pdf[2] + w.pdf[3]).store_aligned(pdf_sum);
   ProposalWeights out;
   for (size_t l = 0; l < count; ++l) {
-    const auto [p, st] = proposal_of(l);
-    const float wl = weight[st == Strategy::kTopToBottom ? 0 : 1][l];
-    const Rgb f =
-        Rgb(attenuation[0][l], attenuation[1][l], attenuation[2][l]) * p.emitted * path[l];
+    const size_t i = k + l;
+    const bool top_to_bottom = q.strategy[i] == static_cast<uint32_t>(Strategy::kTopToBottom);
+    const float wl = weight[top_to_bottom ? 0 : 1][l];
+    const Rgb emitted(q.emitted_r[i], q.emitted_g[i], q.emitted_b[i]);
+    const Rgb f = Rgb(attenuation[0][l], attenuation[1][l], attenuation[2][l]) * emitted * path[l];
     out.weight[l] = wl;
-    out.contribution[l] = f * static_cast<float>(wl / p.sampling_pdf);
+    out.contribution[l] = f * static_cast<float>(wl / q.sampling_pdf[i]);
     out.in_range[l] = std::isfinite(pdf_sum[l]) && std::isfinite(wl) && std::isfinite(path[l]);
   }
   return out;

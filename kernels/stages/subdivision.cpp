@@ -184,33 +184,30 @@ void queue_connection(Strategy st, uint32_t slot, Rgb contribution,
 // finish_proposal instead (simd/snee_weights_batch.h).
 void weigh_and_connect(const KernelContext& ctx, const PathState& state, const ProposalQueue& q,
                        ShadowQueue& shadow, KernelCounters& counters) {
-  const size_t n = q.entries.size();
+  const size_t n = q.size();
   for (size_t k = 0; k < n; k += simd::kLanes) {
     const size_t count = std::min(simd::kLanes, n - k);
-    const simd::ProposalWeights w = simd::weigh_proposals(
-        [&](size_t l) {
-          const ProposalQueue::Entry& e = q.entries[k + l];
-          return std::pair<const SneeProposal&, Strategy>(e.proposal, e.strategy);
-        },
-        count, ctx.snee);
+    const simd::ProposalWeights w = simd::weigh_proposals(q.items(), k, count, ctx.snee);
     counters.count_lanes(BatchedKernel::kSubdivisionWeights, count, simd::kLanes);
     for (size_t l = 0; l < count; ++l) {
-      const ProposalQueue::Entry& e = q.entries[k + l];
-      const Rgb beta = state.throughput(e.slot);
-      if (!w.in_range[l] || e.proposal.suffix.manifold) {
+      const size_t i = k + l;
+      const Strategy strategy = q.strategy(i);
+      const Rgb beta = state.throughput(q.slot(i));
+      if (!w.in_range[l] || q.manifold(i)) {
         // Suffixes the manifold strategy shares (case D on a sphere) have no batched weighing.
-        if (!e.proposal.suffix.manifold) counters.count(SneeCounter::kScalarWeighings);
-        const SneeCandidate c = finish_proposal(e.strategy, e.proposal, ctx.snee);
+        if (!q.manifold(i)) counters.count(SneeCounter::kScalarWeighings);
+        const SneeCandidate c = finish_proposal(strategy, q.proposal(i), ctx.snee);
         if (c.valid) {
-          queue_connection(e.strategy, e.slot, beta * c.contribution, c.segments, shadow, counters);
+          queue_connection(strategy, q.slot(i), beta * c.contribution, c.segments, shadow,
+                           counters);
         } else {
-          count_failure(c.failure, e.strategy, counters);
+          count_failure(c.failure, strategy, counters);
         }
       } else if (w.weight[l] > 0 && !is_black(w.contribution[l]) && is_finite(w.contribution[l])) {
-        queue_connection(e.strategy, e.slot, beta * w.contribution[l], e.proposal.segments, shadow,
+        queue_connection(strategy, q.slot(i), beta * w.contribution[l], q.segments(i), shadow,
                          counters);
       } else {
-        count_failure(SneeFailure::kZero, e.strategy, counters);
+        count_failure(SneeFailure::kZero, strategy, counters);
       }
     }
   }
@@ -248,10 +245,10 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
                  });
 
   ProposalQueue& proposals = scratch.proposals;
-  proposals.entries.clear();
+  proposals.clear();
   const auto propose = [&](const SneeProposal& p, Strategy st, uint32_t slot) {
     if (p.failure == SneeFailure::kNone && p.sampling_pdf > 0 && std::isfinite(p.sampling_pdf)) {
-      proposals.entries.push_back({p, st, slot});
+      proposals.push(p, st, slot);
     } else {
       count_failure(p.failure == SneeFailure::kNone ? SneeFailure::kZero : p.failure, st, counters);
     }

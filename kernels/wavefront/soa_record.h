@@ -12,6 +12,9 @@
 
 #include "kernels/wavefront/aligned_array.h"
 
+// A 3-vector field `name` as three float arrays name_x, name_y, name_z.
+#define SNEE_SOA_VECTOR(X, name) X(float, name##_x) X(float, name##_y) X(float, name##_z)
+
 #define SNEE_SOA_DECLARE(type, name) AlignedArray<type> name;
 #define SNEE_SOA_ALLOCATE(type, name) name = AlignedArray<type>(entries);
 #define SNEE_SOA_BYTES(type, name) +sizeof(type)

@@ -36,16 +36,25 @@ struct TopToBottomLights : TopToBottomLightLanes {
   std::vector<LightSample> samples;
 };
 
-// The proposals that sampled something, in exit order, waiting for the batched weighing;
-// reserved for two per exit.
-struct ProposalQueue {
-  explicit ProposalQueue(size_t capacity) { entries.reserve(2 * capacity); }
-  struct Entry {
-    SneeProposal proposal;
-    Strategy strategy;
-    uint32_t slot;
-  };
-  std::vector<Entry> entries;
+// The proposals that sampled something, in exit order, waiting for the batched weighing, as a
+// structure of arrays (work_items.h) the weighing loads its lanes from; room for two per exit.
+class ProposalQueue {
+ public:
+  explicit ProposalQueue(size_t capacity) : items_(2 * capacity), capacity_(2 * capacity) {}
+  void clear() { size_ = 0; }
+  size_t size() const { return size_; }
+  const ProposalItems& items() const { return items_; }
+  void push(const SneeProposal& p, Strategy strategy, uint32_t slot);
+  // Proposal i as the scalar functions take it (finish_proposal).
+  SneeProposal proposal(size_t i) const;
+  Strategy strategy(size_t i) const { return static_cast<Strategy>(items_.strategy[i]); }
+  uint32_t slot(size_t i) const { return items_.slot[i]; }
+  bool manifold(size_t i) const { return items_.manifold[i] != 0; }
+  std::array<ShadowSegment, 3> segments(size_t i) const;
+
+ private:
+  ProposalItems items_;
+  size_t capacity_ = 0, size_ = 0;
 };
 
 struct SubdivisionScratch {
