@@ -18,6 +18,14 @@ Vec3 load(size_t i, const AlignedArray<float>& x, const AlignedArray<float>& y,
   return {x[i], y[i], z[i]};
 }
 
+void store_segment(const ShadowSegment& seg, size_t i, AlignedArray<float>& ox,
+                   AlignedArray<float>& oy, AlignedArray<float>& oz, AlignedArray<float>& dx,
+                   AlignedArray<float>& dy, AlignedArray<float>& dz, AlignedArray<float>& t) {
+  store(seg.origin, i, ox, oy, oz);
+  store(seg.direction, i, dx, dy, dz);
+  t[i] = seg.t_max;
+}
+
 }  // namespace
 
 void ProposalQueue::push(const SneeProposal& p, Strategy strategy, uint32_t slot) {
@@ -47,17 +55,9 @@ void ProposalQueue::push(const SneeProposal& p, Strategy strategy, uint32_t slot
   q.boundary_curvature[i] = s.boundary_curvature;
   store(p.emitted, i, q.emitted_r, q.emitted_g, q.emitted_b);
   q.sampling_pdf[i] = p.sampling_pdf;
-  AlignedArray<float>* o[3][3] = {
-      {&q.o0_x, &q.o0_y, &q.o0_z}, {&q.o1_x, &q.o1_y, &q.o1_z}, {&q.o2_x, &q.o2_y, &q.o2_z}};
-  AlignedArray<float>* d[3][3] = {
-      {&q.d0_x, &q.d0_y, &q.d0_z}, {&q.d1_x, &q.d1_y, &q.d1_z}, {&q.d2_x, &q.d2_y, &q.d2_z}};
-  AlignedArray<float>* t[3] = {&q.t0, &q.t1, &q.t2};
-  for (int k = 0; k < 3; ++k) {
-    const ShadowSegment& seg = p.segments[k];
-    store(seg.origin, i, *o[k][0], *o[k][1], *o[k][2]);
-    store(seg.direction, i, *d[k][0], *d[k][1], *d[k][2]);
-    (*t[k])[i] = seg.t_max;
-  }
+  store_segment(p.segments[0], i, q.o0_x, q.o0_y, q.o0_z, q.d0_x, q.d0_y, q.d0_z, q.t0);
+  store_segment(p.segments[1], i, q.o1_x, q.o1_y, q.o1_z, q.d1_x, q.d1_y, q.d1_z, q.t1);
+  store_segment(p.segments[2], i, q.o2_x, q.o2_y, q.o2_z, q.d2_x, q.d2_y, q.d2_z, q.t2);
 }
 
 std::array<ShadowSegment, 3> ProposalQueue::segments(size_t i) const {
