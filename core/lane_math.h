@@ -1,6 +1,7 @@
 // The few operations the physics needs beyond + - * / and comparisons, for code written once
 // over its lane type F: float for the scalar functions, an xsimd float batch for the batched
-// kernels (kernels/simd/), double where a test oracle wants one. A lane-generic function brings
+// kernels (kernels/simd/), double for SNEE's scalar densities and samplers, whose products of
+// inverse squares need its range (kernels/physics/snee/). A lane-generic function brings
 // them in with `using namespace lane;` and calls select, sqrt and abs unqualified: the
 // scalar overloads here are found by ordinary lookup, xsimd's by argument-dependent lookup on the
 // batch, so this header needs no xsimd and snee_physics stays free of it. Both sides of a

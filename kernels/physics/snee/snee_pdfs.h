@@ -5,8 +5,8 @@
 // these, so the weights of the strategies that can produce a path always sum to one
 // (docs/method.md 3.6, correctness rule).
 //
-// All path densities are in the measure of suffix_measure(s) (cases A-D) and are 0 wherever the
-// strategy cannot produce the suffix; in particular the probe-based ones are 0 unless
+// All path densities are in the suffix's measure (cases A-D, suffix_weighing.h) and are 0 wherever
+// the strategy cannot produce the suffix; in particular the probe-based ones are 0 unless
 // snee_can_produce(s).
 #pragma once
 

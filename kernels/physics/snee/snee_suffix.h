@@ -50,24 +50,6 @@ struct SneeSuffix {
   float boundary_curvature = 0;
 };
 
-// The deltas of a smooth interface and of a directional light remove dimensions from the path
-// space, so each combination has its own measure and its own set of strategies that can produce
-// a path in it (docs/method.md 3.7, cases A-D). "Smooth" means DielectricParams::delta(): an
-// index-matched interface refracts straight through whatever its roughness.
-enum class SuffixMeasure {
-  kFull,            // A: rough interface, non-delta light: dV(x_j) dA(x_k) dsigma(omega_o)
-  kDeltaLight,      // B: rough interface, delta light: dV(x_j) dA(x_k)
-  kDeltaInterface,  // C: smooth interface, non-delta light: dV(x_j) dA(x_k)
-  kDeltaBoth,       // D: smooth interface, delta light: dA(x_k) dt along the refracted ray
-};
-
-inline SuffixMeasure suffix_measure(const SneeSuffix& s) {
-  if (s.interface.delta()) {
-    return s.light_delta ? SuffixMeasure::kDeltaBoth : SuffixMeasure::kDeltaInterface;
-  }
-  return s.light_delta ? SuffixMeasure::kDeltaLight : SuffixMeasure::kFull;
-}
-
 // Whether the probe-based strategies (TB, BT) can produce the suffix at all.
 inline bool snee_can_produce(const SneeSuffix& s) {
   return s.x_i_medium && s.x_j_medium && s.v_first;

@@ -6,6 +6,14 @@
 // cannot hold), a float batch for the subdivision stage's weighing of its proposals, each lane
 // with its own medium, interface and light.
 //
+// The deltas of a smooth interface and of a directional light remove dimensions from the path
+// space, so each combination has its own measure (docs/method.md 3.7): A, rough interface and
+// non-delta light, dV(x_j) dA(x_k) dsigma(omega_o); B, rough and delta light, dV(x_j) dA(x_k);
+// C, smooth and non-delta light, dV(x_j) dA(x_k); D, smooth and delta light, dA(x_k) dt along the
+// refracted ray. Every density and the integrand are in their suffix's measure, selected per lane
+// by `delta` (DielectricT::delta(): an index-matched interface refracts straight through whatever
+// its roughness) and `light_delta`.
+//
 // Kept well conditioned in float: the MIS weights are ratios to the largest density (no squares
 // of large densities), the equiangular angle range is atan2(h, -delta) (distance_samplers.h) and
 // the joint-importance density has its geometric lobe's (pi - gamma) / sin(gamma) factors
