@@ -421,6 +421,8 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   if (!nonfinite.empty()) std::fprintf(stderr, "%s\n", nonfinite.c_str());
   const std::string engagement = snee_engagement_note(options, result.stats);
   if (!engagement.empty()) std::fprintf(stderr, "%s\n", engagement.c_str());
+  const std::string grids = grid_media_note(options, loaded.scene);
+  if (!grids.empty()) std::fprintf(stderr, "%s\n", grids.c_str());
   write_images(result.film, images);
   if (!stats_.empty()) write_json_file(stats_json(name, options, result, stats_tiles_), stats_);
   if (result.complete) {

@@ -150,6 +150,17 @@ std::string dense_medium_warning(const ShortestFreePath& shortest) {
   return text;
 }
 
+std::string grid_media_note(const RenderOptions& options, const Scene& scene) {
+  if (options.integrator != "snee") return "";
+  std::string names;
+  for (const Medium& m : scene.media) {
+    if (m.density) names += (names.empty() ? "'" : ", '") + m.name + "'";
+  }
+  if (names.empty()) return "";
+  return "note: snee samples the grid media " + names +
+         " as pt does: SNEE's samplers need a homogeneous medium (docs/method.md 4.8)";
+}
+
 std::string snee_engagement_note(const RenderOptions& options, const RenderStats& stats) {
   if (options.integrator != "snee" || stats.snee_engaged) return "";
   char text[300];

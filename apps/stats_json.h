@@ -37,6 +37,9 @@ std::string dense_medium_warning(const ShortestFreePath& shortest);
 // `snee` renders as `pt` when every light looks larger than --snee-light-limit: the note it
 // prints then ("note: snee ran as pt: ..."), or "" when SNEE ran or another integrator did.
 std::string snee_engagement_note(const RenderOptions& options, const RenderStats& stats);
+// For "snee" with grid media in the scene, the note that says they are sampled as pt samples
+// them ("note: snee samples the grid media 'smoke' as pt does: ..."), or "".
+std::string grid_media_note(const RenderOptions& options, const Scene& scene);
 
 // Throws std::runtime_error naming the file if it cannot be written.
 void write_json_file(const nlohmann::ordered_json& json, const std::string& path);

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "core/density_grid.h"
 #include "core/math.h"
 #include "scene/light_selection.h"
 
@@ -87,12 +89,14 @@ struct Material {
   bool has_texture() const { return albedo_texture >= 0 || roughness_texture >= 0; }
 };
 
-// Homogeneous participating medium; coefficients per scene unit.
+// Participating medium; coefficients per scene unit. Homogeneous unless it has a density grid,
+// which then scales sigma_s and sigma_a point by point (they are the coefficients at density 1).
 struct Medium {
   std::string name;
   Rgb sigma_s{1.0f};
   Rgb sigma_a{0.0f};
   float g = 0.0f;  // Henyey-Greenstein asymmetry
+  std::shared_ptr<const DensityGrid> density;
   Rgb sigma_t() const { return sigma_s + sigma_a; }
 };
 

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "scene/camera_frame.h"
+#include "scene/density_grid_io.h"
 #include "scene/gltf_reader.h"
 #include "scene/input_file.h"
 #include "scene/json_reader.h"
@@ -704,6 +705,61 @@ class SceneReader {
             obj.required("k").rgb(kConductorIndexRange)};
   }
 
+  // A grid medium's density: {"file": a .vol file} or {"resolution": [nx, ny, nz], "values":
+  // [...]}, with "bounds": {"min": [x, y, z], "max": [x, y, z]} placing the grid in the world
+  // (required for inline values; a file's own box otherwise).
+  // `canonical` receives the density as the canonical scene writes it.
+  DensityGrid density_grid(const JsonValue& value, json& canonical) {
+    const JsonObject obj = value.object({"file", "resolution", "values", "bounds"});
+    if (obj.has("file") == obj.has("values")) {
+      value.fail("expected either file (a .vol density grid) or resolution and values");
+    }
+    DensityGrid grid;
+    if (auto file_name = obj.optional("file")) {
+      if (obj.has("resolution")) {
+        obj.required("resolution").fail("a file gives its own resolution; expected none here");
+      }
+      const ResolvedPath file = resolve(file_name->string());
+      try {
+        grid = read_density_grid(file.file, budget_);
+      } catch (const SceneError& e) {
+        file_name->fail(e.what());
+      }
+      grid.source = file.file;
+      canonical["file"] = file.canonical;
+    } else {
+      const std::vector<JsonValue> resolution = obj.required("resolution").array(3);
+      const auto axis = [](const JsonValue& n) { return static_cast<int>(n.integer(1, 1 << 16)); };
+      grid.nx = axis(resolution[0]);
+      grid.ny = axis(resolution[1]);
+      grid.nz = axis(resolution[2]);
+      const JsonValue values = obj.required("values");
+      const uint64_t voxels = static_cast<uint64_t>(grid.nx) * static_cast<uint64_t>(grid.ny) *
+                              static_cast<uint64_t>(grid.nz);
+      if (!values.json().is_array() || values.json().size() != voxels) {
+        values.expected("an array of " + std::to_string(voxels) + " densities (one per voxel, x " +
+                        "fastest, then y, then z)");
+      }
+      for (const JsonValue& v : values.array()) grid.values.push_back(v.real(kNonNegative));
+      if (!obj.has("bounds")) value.fail("inline values need bounds (min and max) to place them");
+      grid.source = value.path();
+      canonical["resolution"] = {grid.nx, grid.ny, grid.nz};
+      canonical["values"] = grid.values;
+    }
+    if (auto bounds = obj.optional("bounds")) {
+      const JsonObject box = bounds->object({"min", "max"});
+      grid.lo = box.required("min").vec3();
+      grid.hi = box.required("max").vec3();
+    }
+    try {
+      validate_density_grid(grid, grid.source);
+    } catch (const SceneError& e) {
+      value.fail(e.what());
+    }
+    canonical["bounds"] = {{"min", to_json(grid.lo)}, {"max", to_json(grid.hi)}};
+    return grid;
+  }
+
   // A medium's albedo from the image that `where` names: its mean colour, one albedo for the
   // whole medium (the medium stays homogeneous, as SNEE's samplers require).
   Rgb mean_albedo(const JsonValue& where) {
@@ -730,10 +786,18 @@ class SceneReader {
   }
 
   int add_medium(const JsonValue& value, bool top_level) {
-    const JsonObject obj = value.object(
-        {"name", "type", "sigma_s", "sigma_a", "albedo", "albedo_texture", "mean_free_path", "g"});
-    if (auto type = obj.optional("type")) type->choice({"homogeneous"});
+    const JsonObject obj = value.object({"name", "type", "sigma_s", "sigma_a", "albedo",
+                                         "albedo_texture", "mean_free_path", "g", "density"});
+    const std::string type = obj.has("type") ? obj.required("type").choice({"homogeneous", "grid"})
+                                             : std::string("homogeneous");
     Medium medium;
+    json canonical_grid;
+    if (type == "grid") {
+      medium.density = std::make_shared<const DensityGrid>(
+          density_grid(obj.required("density"), canonical_grid));
+    } else if (auto density = obj.optional("density")) {
+      density->fail("a density belongs to a medium of type \"grid\"; expected no density here");
+    }
     medium.name = unique_name(obj, top_level, medium_names_, "medium");
     const bool by_coefficients = obj.has("sigma_s") || obj.has("sigma_a");
     const bool by_albedo =
@@ -769,11 +833,13 @@ class SceneReader {
       medium.sigma_a = (Rgb(1.0f) - albedo) * sigma_t;
     }
     if (auto g = obj.optional("g")) medium.g = g->real({-1.0, 1.0, true, true});
-    canonical_media_.push_back({{"name", medium.name},
-                                {"type", "homogeneous"},
+    nlohmann::json canonical = {{"name", medium.name},
+                                {"type", type},
                                 {"sigma_s", to_json(medium.sigma_s)},
                                 {"sigma_a", to_json(medium.sigma_a)},
-                                {"g", medium.g}});
+                                {"g", medium.g}};
+    if (medium.density) canonical["density"] = std::move(canonical_grid);
+    canonical_media_.push_back(std::move(canonical));
     medium_names_[medium.name] = value.path();
     out_.scene.media.push_back(medium);
     return static_cast<int>(out_.scene.media.size() - 1);

@@ -143,7 +143,9 @@ void add_workspace_stats(const UnitWorkspace& ws, KernelCounters& counters, Rend
 ShortestFreePath shortest_free_path(const Scene& scene, float clearance) {
   ShortestFreePath shortest;
   for (const Medium& m : scene.media) {
-    const double densest = std::max({m.sigma_t().x, m.sigma_t().y, m.sigma_t().z});
+    // A grid medium is densest where its grid is (the coefficients are those at density 1).
+    const double peak = m.density ? m.density->max_value : 1.0;
+    const double densest = peak * std::max({m.sigma_t().x, m.sigma_t().y, m.sigma_t().z});
     const double clearances = 1.0 / (densest * clearance);
     if (densest > 0 && clearances < shortest.clearances) shortest = {clearances, m.name};
   }

@@ -668,6 +668,36 @@ TEST_F(CliTest, SneeSaysWhenItRanAsThePathTracer) {
   }
 }
 
+// A grid medium renders from the command line; snee says it samples it as pt does; a broken
+// .vol file stops the render with the file, the JSON path and what was wrong.
+TEST_F(CliTest, GridMediumRendersAndABadGridFileIsNamed) {
+  const auto scene_with = [](const std::string& density) {
+    return R"({"camera": {"position": [0, 0, 4], "look_at": [0, 0, 0]},
+      "materials": [{"name": "glass", "type": "dielectric", "ior": 1.5}],
+      "media": [{"name": "smoke", "type": "grid", "sigma_s": 2, "density": )" +
+           density + R"(}],
+      "shapes": [{"type": "sphere", "material": "glass", "medium": "smoke"}],
+      "lights": [{"type": "cone", "direction": [0, 1, 1], "half_angle_degrees": 5,
+                  "radiance": 100}]})";
+  };
+  write_file(path("grid.json"), scene_with(R"({"resolution": [2, 1, 1], "values": [0.5, 2],
+                            "bounds": {"min": [-1, -1, -1], "max": [1, 1, 1]}})"));
+  const Outcome ok =
+      snee("render grid.json --resolution 8x8 --spp 2 --quiet --integrator snee -o g.exr");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_TRUE(contains(ok.output, "note: snee samples the grid media 'smoke' as pt does"))
+      << ok.output;
+  EXPECT_TRUE(fs::is_regular_file(path("g.exr")));
+
+  write_file(path("smoke.vol"), "VOX\x03 and not a grid at all, but long enough for a header");
+  write_file(path("bad.json"), scene_with(R"({"file": "smoke.vol"})"));
+  const Outcome bad = snee("render bad.json --resolution 8x8 --spp 2 --quiet -o b.exr");
+  EXPECT_NE(bad.exit_code, 0) << bad.output;
+  EXPECT_TRUE(contains(bad.output, "media[0].density.file")) << bad.output;
+  EXPECT_TRUE(contains(bad.output, "smoke.vol: does not start with 'VOL'")) << bad.output;
+  EXPECT_FALSE(fs::exists(path("b.exr")));
+}
+
 TEST_F(CliTest, DefaultOutputIsNamedAfterTheScene) {
   const Outcome run = snee("render builtin:furnace-sphere --resolution 8x4 --spp 1 --quiet");
   ASSERT_EQ(run.exit_code, 0) << run.output;

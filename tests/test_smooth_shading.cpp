@@ -97,7 +97,7 @@ enum class Object { kAnalytic, kSmooth, kFlat };
 // icosphere in its place, lit by a directional light from the upper left and, with `sky`, a dim
 // constant environment.
 Scene test_scene(const Material& material, Object object, int resolution, bool sky) {
-  const Medium grid_medium{"grid-medium", {4.0f, 5.0f, 6.0f}, {0.12f, 0.1f, 0.08f}, 0.0f};
+  const Medium grid_medium{"grid-medium", {4.0f, 5.0f, 6.0f}, {0.12f, 0.1f, 0.08f}, 0.0f, nullptr};
   Scene scene = test::sphere_scene(material, grid_medium, resolution);
   Shape& shape = scene.shapes[0];
   if (material.kind != MaterialKind::kDielectric) shape.interior_medium = -1;
@@ -275,7 +275,7 @@ TEST(SmoothShading, FurnaceDielectricLosesLittleEnergy) {
   Material glass;
   glass.kind = MaterialKind::kDielectric;
   glass.ior = 1.5f;
-  const Medium white_medium{"white", Rgb(2.0f), Rgb(0.0f), 0.0f};
+  const Medium white_medium{"white", Rgb(2.0f), Rgb(0.0f), 0.0f, nullptr};
   for (const char* integrator : {"pt", "snee"}) {
     expect_furnace_loss_bounded(glass, white_medium, integrator, 0.01);
   }

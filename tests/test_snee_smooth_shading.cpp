@@ -26,7 +26,7 @@ Scene coarse_icosphere(float roughness) {
   boundary.kind = MaterialKind::kDielectric;
   boundary.ior = 1.5f;
   boundary.roughness = roughness;
-  const Medium medium{"grid-medium", {4.0f, 5.0f, 6.0f}, {0.12f, 0.1f, 0.08f}, 0.0f};
+  const Medium medium{"grid-medium", {4.0f, 5.0f, 6.0f}, {0.12f, 0.1f, 0.08f}, 0.0f, nullptr};
   Scene scene = test::sphere_scene(boundary, medium, 32);
   Shape& shape = scene.shapes[0];
   shape.kind = ShapeKind::kMesh;

@@ -80,8 +80,10 @@ ExitEvent make_exit_event(const KernelContext& ctx, const PathState& state, uint
     e.light_handled_elsewhere = leaving_medium && after_medium_vertex;
     return e;
   }
+  // SNEE competes only for exits from media it runs in (MediumInfo::snee_eligible).
   if (ctx.integrator != Integrator::kSnee || !leaving_medium || !after_medium_vertex ||
-      (flags & kPathMediumVertexI) == 0) {
+      (flags & kPathMediumVertexI) == 0 ||
+      !ctx.media[static_cast<size_t>(state.medium[slot])].snee_eligible()) {
     return e;
   }
   e.snee_possible = true;

@@ -18,18 +18,53 @@ namespace snee {
 
 namespace {
 
-using simd::div;
 using simd::FloatBatch;
-using simd::mul;
-using simd::select;
 using simd::UintBatch;
 using simd::Vec3Batch;
 
-// The straight-line part of a medium event, for one chunk of the queue at position k: free
-// flight with path-level spectral MIS, the throughput and channel probabilities it leaves
-// (at the scattering point, or at the boundary it reached), and the phase-sampled direction
-// from the scattering point, and the roulette number. Every lane is computed; the per-slot pass
-// decides what is used.
+// What a free flight leaves: the distance t, the point x there, and the path's throughput and
+// channel probabilities after it (at the scattering point, or at the boundary it reached).
+template <class F>
+struct Flight {
+  F t;
+  lane::Vec3Of<F> x, throughput, channel_p;
+};
+
+// The free flight of one lane type F through medium m (any ParticipatingMedium at F) with
+// path-level spectral MIS, from origin along w up to the boundary at t_hit. Scattering at t
+// weights by sigma_s T(t) / pdf(t) per channel and takes each channel's share of pdf(t);
+// reaching the boundary weights by transmittance over the survival probability. Both outcomes
+// are computed and selected.
+template <class F, class M>
+Flight<F> free_flight(const M& m, const lane::Vec3Of<F>& origin, const lane::Vec3Of<F>& w,
+                      const lane::Vec3Of<F>& p, const lane::Vec3Of<F>& beta, F t_hit, F u_channel,
+                      F u) {
+  using namespace lane;
+  using V = Vec3Of<F>;
+  const F t = m.sample_distance(origin, w, p, u_channel, u);
+  const V x = origin + w * t;
+  const auto scattered = t < t_hit;
+  const auto crossed = !scattered && t_hit < F(kInfinity);
+  const V tr_hit = m.transmittance(origin, w, t_hit);
+  const F survival = dot(p, tr_hit);
+  const V tr = m.transmittance(origin, w, t);
+  const V channel_pdfs = m.channel_pdfs(origin, w, t, tr);
+  const F pdf = dot(p, channel_pdfs);
+  const V sigma_s = m.scattering(x);
+  const auto channel = [&](F b, F q, F s, F tr_c, F tr_hit_c, F pdf_c) {
+    return std::pair{
+        select(scattered, b * s * tr_c / pdf, select(crossed, b * tr_hit_c / survival, b)),
+        select(scattered, q * pdf_c / pdf, select(crossed, q * tr_hit_c / survival, q))};
+  };
+  const auto [bx, px] = channel(beta.x, p.x, sigma_s.x, tr.x, tr_hit.x, channel_pdfs.x);
+  const auto [by, py] = channel(beta.y, p.y, sigma_s.y, tr.y, tr_hit.y, channel_pdfs.y);
+  const auto [bz, pz] = channel(beta.z, p.z, sigma_s.z, tr.z, tr_hit.z, channel_pdfs.z);
+  return {t, x, {bx, by, bz}, {px, py, pz}};
+}
+
+// The straight-line part of a medium event for one chunk of the queue at position k, all in
+// homogeneous media: the free flight, the phase-sampled direction from the scattering point, and
+// the roulette number. Every lane is computed; the per-slot pass decides what is used.
 void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chunk,
          FlightResults& out, size_t k) {
   const MediumLanes m = load_media(ctx, state, chunk);
@@ -52,39 +87,45 @@ void fly(const KernelContext& ctx, PathState& state, const simd::SlotChunk& chun
   const Vec3Batch origin{chunk.load(state.origin_x), chunk.load(state.origin_y),
                          chunk.load(state.origin_z)};
   const Vec3Batch w{chunk.load(state.dir_x), chunk.load(state.dir_y), chunk.load(state.dir_z)};
-  const FloatBatch t = m.sample_distance(origin, w, p, rf.u[0], rf.u[1]);
-  const Vec3Batch x = origin + w * t;
-  t.store_aligned(out.t.data() + k);
-  simd::store_aligned(x, out.x.data() + k, out.y.data() + k, out.z.data() + k);
   const Vec3Batch beta{chunk.load(state.throughput_r), chunk.load(state.throughput_g),
                        chunk.load(state.throughput_b)};
-  const FloatBatch t_hit = chunk.load(state.hit_t);
-  const auto scattered = t < t_hit;
-  const auto crossed = !scattered && xsimd::isfinite(t_hit);
+  const Flight<FloatBatch> f =
+      free_flight(m, origin, w, p, beta, chunk.load(state.hit_t), rf.u[0], rf.u[1]);
+  f.t.store_aligned(out.t.data() + k);
+  simd::store_aligned(f.x, out.x.data() + k, out.y.data() + k, out.z.data() + k);
+  chunk.store(state.throughput_r, f.throughput.x);
+  chunk.store(state.throughput_g, f.throughput.y);
+  chunk.store(state.throughput_b, f.throughput.z);
+  chunk.store(state.channel_p_r, f.channel_p.x);
+  chunk.store(state.channel_p_g, f.channel_p.y);
+  chunk.store(state.channel_p_b, f.channel_p.z);
 
-  // Reaching the boundary: transmittance over the survival probability.
-  const Vec3Batch tr_hit = m.transmittance(origin, w, t_hit);
-  const FloatBatch survival = simd::dot(p, tr_hit);
-  // Scattering at t: sigma_s T(t) / pdf(t) per channel, and each channel's share of pdf(t).
-  const Vec3Batch tr = m.transmittance(origin, w, t);
-  const Vec3Batch channel_pdfs = m.channel_pdfs(origin, w, t, tr);
-  const FloatBatch pdf = simd::dot(p, channel_pdfs);
-  const Vec3Batch beta_out = select(scattered, div(mul(mul(beta, m.scattering(x)), tr), pdf),
-                                    select(crossed, div(mul(beta, tr_hit), survival), beta));
-  const Vec3Batch p_out = select(scattered, div(mul(p, channel_pdfs), pdf),
-                                 select(crossed, div(mul(p, tr_hit), survival), p));
-  chunk.store(state.throughput_r, beta_out.x);
-  chunk.store(state.throughput_g, beta_out.y);
-  chunk.store(state.throughput_b, beta_out.z);
-  chunk.store(state.channel_p_r, p_out.x);
-  chunk.store(state.channel_p_g, p_out.y);
-  chunk.store(state.channel_p_b, p_out.z);
-
-  const simd::HgSampleBatch phase = simd::hg_sample(w, m.asymmetry(x), rp.u[0], rp.u[1]);
+  const simd::HgSampleBatch phase = simd::hg_sample(w, m.asymmetry(f.x), rp.u[0], rp.u[1]);
   phase.direction.x.store_aligned(out.wx.data() + k);
   phase.direction.y.store_aligned(out.wy.data() + k);
   phase.direction.z.store_aligned(out.wz.data() + k);
   phase.pdf.store_aligned(out.phase_pdf.data() + k);
+}
+
+// The same for the slot at queue position k in a grid medium, one slot at a time: the voxel
+// walk's loop length differs from lane to lane. The random numbers are the batch's (the
+// counter-based blocks agree bit for bit).
+void fly_one(const KernelContext& ctx, PathState& state, uint32_t s, const GridMedium& m,
+             FlightResults& out, size_t k) {
+  const RandomBlock rf = draw(ctx, state, s, RngPurpose::kFreeFlight);
+  const RandomBlock rp = draw(ctx, state, s, RngPurpose::kPhase);
+  if (state.depth[s] >= 3u)
+    out.u_roulette[k] = draw(ctx, state, s, RngPurpose::kRussianRoulette).u[0];
+  const Vec3 w = state.direction(s);
+  const Flight<float> f = free_flight(m, state.origin(s), w, state.channel_probabilities(s),
+                                      state.throughput(s), state.hit_t[s], rf.u[0], rf.u[1]);
+  out.t[k] = f.t;
+  out.x[k] = f.x.x, out.y[k] = f.x.y, out.z[k] = f.x.z;
+  state.set_throughput(s, f.throughput);
+  state.set_channel_probabilities(s, f.channel_p);
+  const HgSample<float> phase = hg_sample<float>(w, m.asymmetry(f.x), rp.u[0], rp.u[1]);
+  out.wx[k] = phase.direction.x, out.wy[k] = phase.direction.y, out.wz[k] = phase.direction.z;
+  out.phase_pdf[k] = phase.pdf;
 }
 
 // Next-event estimation from a medium vertex along a straight shadow ray. Worth a ray only when
@@ -96,7 +137,7 @@ void medium_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 x, 
   const RandomBlock r = draw(ctx, state, s, RngPurpose::kLightSample);
   const LightSample ls = ctx.lights->sample(x, r.u[0], {r.u[1], r.u[2]});
   if (!ls.valid || ls.pdf <= 0) return;
-  const float phase = hg_phase(dot(w_before, ls.wi), m.medium.asymmetry(x));
+  const float phase = hg_phase(dot(w_before, ls.wi), m.asymmetry(x));
   const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, phase);
   const Rgb contribution = state.throughput(s) * ls.radiance * (phase * weight / ls.pdf);
   if (is_black(contribution)) return;
@@ -130,8 +171,9 @@ Vec3 keep_clear_of_boundary(const KernelContext& ctx, const PathState& state, ui
 // The AOV albedo of a medium vertex (first_hit_aovs.h), which has no surface: sigma_s / sigma_t
 // per channel, 0 in a channel that does not interact (spectral MIS may scatter following
 // another). Its AOV normal faces back along the arriving ray.
-Rgb single_scattering_albedo(const HomogeneousMedium& m, Vec3 x) {
-  const Rgb sigma_s = m.scattering(x), sigma_t = m.extinction(x);
+Rgb single_scattering_albedo(const MediumInfo& m, Vec3 x) {
+  const Rgb sigma_s = m.visit([&](const auto& me) -> Rgb { return me.scattering(x); });
+  const Rgb sigma_t = m.visit([&](const auto& me) -> Rgb { return me.extinction(x); });
   Rgb a(0.0f);
   for (int c = 0; c < 3; ++c) a[c] = sigma_t[c] > 0 ? sigma_s[c] / sigma_t[c] : 0.0f;
   return a;
@@ -139,15 +181,27 @@ Rgb single_scattering_albedo(const HomogeneousMedium& m, Vec3 x) {
 
 }  // namespace
 
-// Two passes: the flights of the whole queue in SIMD chunks (fly), then, per slot in queue
-// order, what branches: routing, vertex memory, depth limit, medium NEE, roulette and SNEE.
+// Two passes: the flights of the whole queue (fly in SIMD chunks over the slots in homogeneous
+// media, fly_one over those in grid media, which a scene with grids sorts to the end of the
+// queue), then, per slot in queue order, what branches: routing, vertex memory, depth limit,
+// medium NEE, roulette and SNEE.
 void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
                   KernelCounters& counters) {
   const size_t n = q.medium.size();
+  size_t homogeneous = n;
+  if (ctx.has_grid_media) {
+    homogeneous = q.medium.partition([&](uint32_t s) {
+      return ctx.media[static_cast<size_t>(state.medium[s])].grid.grid == nullptr;
+    });
+  }
   FlightResults& flights = q.flights;
   for_each_chunk(
-      q.medium.begin(), n, BatchedKernel::kMediumFlights, counters,
+      q.medium.begin(), homogeneous, BatchedKernel::kMediumFlights, counters,
       [&](const simd::SlotChunk& chunk, size_t k) { fly(ctx, state, chunk, flights, k); });
+  for (size_t k = homogeneous; k < n; ++k) {
+    const uint32_t s = q.medium[k];
+    fly_one(ctx, state, s, ctx.media[static_cast<size_t>(state.medium[s])].grid, flights, k);
+  }
   for (size_t k = 0; k < n; ++k) {
     const uint32_t s = q.medium[k];
     const float t_hit = state.hit_t[s];
@@ -168,7 +222,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     state.depth[s] += 1;
     state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
     state.push_vertex(s, x, w_before, true);
-    close_aov_chain(state, s, flights.t[k], single_scattering_albedo(m.medium, x), -w_before);
+    close_aov_chain(state, s, flights.t[k], single_scattering_albedo(m, x), -w_before);
     if (static_cast<int>(state.depth[s]) >= ctx.max_depth || is_black(state.throughput(s))) {
       q.retire.push(s);
       continue;
@@ -183,7 +237,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     }
     // SNEE runs after roulette on the survivors with their rescaled throughput (unbiased);
     // the probe stage reads x_i from the path's vertex memory and draws at this event.
-    if (ctx.integrator == Integrator::kSnee && !m.straight_nee) {
+    if (ctx.integrator == Integrator::kSnee && !m.straight_nee && m.snee_eligible()) {
       connect_manifold(ctx, state, s, m, q.shadow, counters);
       // Top-to-bottom and bottom-to-top place x_j one event further and leave from it: the
       // walk would stop at x_j if that were the depth limit, so they stop there too.

@@ -50,7 +50,7 @@ void trace_tracked_segments(const KernelContext& ctx, StageQueues& q, KernelCoun
         const float t = hit ? batch.tfar(b) : remaining[i];
         if (media[i] >= 0 && std::isfinite(t)) {
           transmittance[i] *=
-              ctx.media[static_cast<size_t>(media[i])].medium.transmittance(origins[i], d, t);
+              ctx.media[static_cast<size_t>(media[i])].transmittance(origins[i], d, t);
         }
         if (!hit) {
           active[k] = kInvalidId;  // reached the light

@@ -138,7 +138,12 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       pixel_spread(2.0f * image_half_extents(s.camera).y / static_cast<float>(s.camera.height)),
       textures(s.textures.empty() ? nullptr : std::make_shared<const TextureSet>(s.textures)) {
   media.reserve(s.media.size());
-  for (const Medium& m : s.media) media.push_back({{m.sigma_s, m.sigma_t(), m.g}, true});
+  for (const Medium& m : s.media) {
+    const GridMedium grid =
+        m.density ? GridMedium{m.density.get(), m.sigma_s, m.sigma_t(), m.g} : GridMedium{};
+    has_grid_media = has_grid_media || m.density;
+    media.push_back({{m.sigma_s, m.sigma_t(), m.g}, grid, true});
+  }
   std::vector<int> boundaries(s.media.size(), 0);
   surfaces.reserve(s.shapes.size());
   for (const Shape& shape : s.shapes) {
@@ -172,6 +177,8 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       continue;
     }
     MediumInfo& m = media[static_cast<size_t>(shape.interior_medium)];
+    // The manifold strategy is SNEE's; a grid medium runs none of SNEE.
+    if (!m.snee_eligible()) continue;
     const bool only_boundary = boundaries[static_cast<size_t>(shape.interior_medium)] == 1;
     if (only_boundary && shape.kind == ShapeKind::kSphere) {
       m.manifold_boundary = static_cast<int32_t>(i);

@@ -12,6 +12,7 @@
 #include "kernels/physics/bsdf/dielectric.h"
 #include "kernels/physics/bsdf/diffuse_transmission.h"
 #include "kernels/physics/lights/light_table.h"
+#include "kernels/physics/medium/grid_medium.h"
 #include "kernels/physics/medium/homogeneous_medium.h"
 #include "kernels/physics/snee/manifold_mesh.h"
 #include "kernels/physics/snee/snee_options.h"
@@ -63,7 +64,24 @@ struct SurfaceInfo {
 };
 
 struct MediumInfo {
+  // The medium's physics. A homogeneous medium is `medium`; a grid medium is `grid` (its
+  // grid.grid set). Stage code reaches either through visit, the one place that tells the kinds
+  // apart; only SNEE's code, which runs where snee_eligible() holds, reads `medium` directly.
   HomogeneousMedium medium;
+  GridMedium grid;
+  bool snee_eligible() const { return grid.grid == nullptr; }
+  // f(the medium as its own type), so each kind's members inline into the caller.
+  template <class Visit>
+  auto visit(Visit&& f) const {
+    return grid.grid ? f(grid) : f(medium);
+  }
+  Rgb transmittance(Vec3 x, Vec3 w, float t) const {
+    return visit([&](const auto& m) -> Rgb { return m.transmittance(x, w, t); });
+  }
+  float asymmetry(Vec3 x) const {
+    return visit([&](const auto& m) { return m.asymmetry(x); });
+  }
+
   // True when every boundary of this medium is an index-matched (null) interface, so a
   // straight shadow ray from inside can reach a light: only then is medium NEE worth a ray.
   bool straight_nee;
@@ -165,6 +183,8 @@ struct KernelContext {
   int max_depth;
   SneeOptions snee;
   bool has_null_surfaces = false;
+  // Some medium is a grid (MediumInfo::grid): medium_event then sorts its queue by kind.
+  bool has_grid_media = false;
   // Each sample's RGB is clipped to this before it reaches the film (0: never). Biased: it
   // trades the energy of rare bright paths (fireflies) for less variance.
   float sample_clamp = 0.0f;

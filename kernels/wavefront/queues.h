@@ -3,6 +3,7 @@
 // order never depends on timing.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -27,6 +28,13 @@ class SlotQueue {
   bool empty() const { return size_ == 0; }
   const uint32_t* begin() const { return slots_.data(); }
   const uint32_t* end() const { return slots_.data() + size_; }
+  // Moves the slots for which first(slot) holds to the front, each group in its order, and
+  // returns how many there are (a stage then runs each group its own way).
+  template <class Predicate>
+  size_t partition(Predicate first) {
+    uint32_t* data = slots_.data();
+    return static_cast<size_t>(std::stable_partition(data, data + size_, first) - data);
+  }
 
  private:
   AlignedArray<uint32_t> slots_;

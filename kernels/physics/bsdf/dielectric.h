@@ -35,6 +35,11 @@ struct DielectricT {
   F alpha = F(0.0f);  // below kSmoothRoughness: smooth
   lane::MaskOf<F> smooth() const { return !(alpha >= F(kSmoothRoughness)); }
   lane::MaskOf<F> delta() const { return smooth() || eta == F(1.0f); }
+  // The same interface at a scalar lane type G (double, for SNEE's scalar code).
+  template <class G>
+  DielectricT<G> as() const {
+    return {G(eta), G(alpha)};
+  }
 };
 using DielectricParams = DielectricT<float>;
 

@@ -1,5 +1,6 @@
-// The medium interface the stage kernels call, and the one medium that implements it today: a
-// homogeneous medium (constant coefficients, one Henyey-Greenstein phase function).
+// The medium interface the stage kernels call, and the homogeneous medium that implements it
+// (constant coefficients, one Henyey-Greenstein phase function) over any lane type; the grid
+// medium (grid_medium.h) is the other kind.
 //
 // A medium answers, at lane type F (core/lane_math.h), with x a point and w a unit direction:
 //   majorant()                     an upper bound of sigma_t along any ray (per channel);
@@ -14,10 +15,11 @@
 //                                  segment's transmittance tr;
 //   kSneeEligible                  whether SNEE's closed-form samplers and densities
 //                                  (kernels/physics/snee/) hold in it.
-// The stages (medium_event, shadow_connect, subdivision, exit events) reach a medium only
-// through these members, so another kind (a voxel grid sampled by delta tracking against its
-// majorant) is one more type with them, plus its loader; the `ParticipatingMedium` concept checks
-// the set.
+// The stages (medium_event, shadow_connect, exit events) reach a medium only through these
+// members, dispatched by MediumInfo::visit (kernels/wavefront/kernel_context.h), so another kind
+// is one more type with them, a case in visit, plus its loader; the `ParticipatingMedium`
+// concept checks the set. SNEE's code (subdivision, the probe, the manifold strategy) runs only
+// where kSneeEligible holds and reads the homogeneous coefficients directly.
 #pragma once
 
 #include <concepts>

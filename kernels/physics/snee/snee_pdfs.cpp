@@ -17,7 +17,7 @@ SuffixLanes<double> in_double(const SneeSuffix& s) {
           Vec3d(s.medium.sigma_s),
           Vec3d(s.medium.sigma_t),
           s.medium.g,
-          {s.interface.eta, s.interface.alpha},
+          s.interface.as<double>(),
           s.light_pdf,
           s.light_delta,
           s.light_distant};

@@ -57,10 +57,6 @@ std::array<double, N> in_double(std::span<const float, N> u) {
   return out;
 }
 
-DielectricT<double> in_double(const DielectricParams& interface) {
-  return {interface.eta, interface.alpha};
-}
-
 SneeProposal failed_proposal(SneeFailure why) {
   SneeProposal p;
   p.failure = why;
@@ -81,7 +77,7 @@ SneeProposal propose_top_to_bottom(const SneeOrigin& origin, const SneeMedium& m
   }
   const TopToBottomVertex<double> v = top_to_bottom_vertex<double>(
       {Vec3d(origin.x_i), Vec3d(origin.omega_in), Vec3d(exit.x_k), Vec3d(exit.n_k),
-       Vec3d(exit.ns_k), medium.g, Vec3d(medium.sigma_t), in_double(exit.interface),
+       Vec3d(exit.ns_k), medium.g, Vec3d(medium.sigma_t), exit.interface.as<double>(),
        Vec3d(light.wi), light.pdf, light.delta},
       options, in_double(u));
   if (!v.refracted) return failed_proposal(SneeFailure::kRefraction);
@@ -108,7 +104,7 @@ SneeProposal propose_bottom_to_top(const SneeOrigin& origin, const SneeMedium& m
                                    std::span<const float, kBottomToTopDimensions> u) {
   const BottomToTopVertex<double> v = bottom_to_top_vertex<double>(
       {Vec3d(origin.x_i), Vec3d(origin.omega_in), Vec3d(exit.x_k), Vec3d(exit.n_k),
-       Vec3d(exit.ns_k), medium.g, in_double(exit.interface)},
+       Vec3d(exit.ns_k), medium.g, exit.interface.as<double>()},
       options, in_double(u));
   const Vec3 x_j(v.x_j);
   if (!v.placed || !is_finite(x_j)) return failed_proposal(SneeFailure::kPlacement);
