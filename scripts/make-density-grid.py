@@ -5,7 +5,7 @@ media"):
     python3 scripts/make-density-grid.py [OUTPUT.vol]
 
 The grid is 40 x 40 x 40 voxels over [-1, 1]^3, in Mitsuba's .vol format (version 3, float32,
-one channel). Its density is a pale stone of density 0.6 crossed by dark, dense veins (up to 4)
+one channel). Its density is a clear stone of density 0.1 crossed by dense veins (up to 4)
 along a turbulent sine of x + y / 2, the classic procedural marble: the turbulence is a sum of
 four octaves of trilinear value noise over a lattice hashed from integer coordinates, so the file
 is the same bytes on every run and needs nothing beyond the standard library.
@@ -45,8 +45,8 @@ def turbulence(x, y, z):
 
 def density(x, y, z):
     phase = 5.0 * (x + 0.5 * y) + 6.0 * turbulence(x, y, z)
-    vein = abs(math.sin(phase)) ** 8  # thin bands where the sine peaks
-    return 0.6 + 3.4 * vein
+    vein = abs(math.sin(phase)) ** 4  # thin bands where the sine peaks
+    return 0.1 + 3.9 * vein
 
 
 def main():
