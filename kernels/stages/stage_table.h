@@ -36,10 +36,12 @@ namespace snee {
      read vertex memory only. */                                                                 \
   X(kExtend, "extend", "extend", 1, &StageQueues::extend, extend)                                \
   /* medium_event -> surface | escaped (flight reached the hit), or extend (scattered), or       \
-     retire (depth limit, black, roulette); a scattered slot may also go to probe, so it sits    \
-     in two queues. Queues medium NEE connections. Reads ray, hit, medium, throughput; writes    \
-     throughput, depth, flags, vertex memory, mis_pdf, the new ray and event + 1 (after its      \
-     draws). Draws kFreeFlight, kPhase, kRussianRoulette, kLightSample at the event. */          \
+     retire (depth limit, black, roulette); a scattered slot in a SNEE-eligible (homogeneous)    \
+     medium may also go to probe, so it sits in two queues. With grid media it reorders its      \
+     own input queue, grid slots last. Queues medium NEE connections. Reads ray, hit, medium,    \
+     throughput; writes throughput, depth, flags, vertex memory, mis_pdf, the new ray and        \
+     event + 1 (after its draws). Draws kFreeFlight, kPhase, kRussianRoulette, kLightSample at   \
+     the event. */                                                                               \
   X(kMediumEvent, "medium_event", "medium", 2, &StageQueues::medium, medium_event)               \
   /* snee_probe -> subdivide (the probe found the medium's own boundary from inside). Reads      \
      vertex memory (x_i is the newest vertex, x_j of the memory) and the medium; writes no       \
