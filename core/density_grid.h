@@ -23,6 +23,14 @@ struct DensityGrid {
   // scene.
   std::string source;
 
+  // nx * ny * nz: 0 if an axis has none, UINT64_MAX where the product overflows (a file's
+  // header may claim any size, and the count is checked before anything is allocated).
+  uint64_t voxel_count() const {
+    if (nx < 1 || ny < 1 || nz < 1) return 0;
+    const uint64_t slice = static_cast<uint64_t>(nx) * static_cast<uint64_t>(ny);  // < 2^62
+    const uint64_t z = static_cast<uint64_t>(nz);
+    return slice > UINT64_MAX / z ? UINT64_MAX : slice * z;
+  }
   float at(int x, int y, int z) const {
     return values[(static_cast<size_t>(z) * static_cast<size_t>(ny) + static_cast<size_t>(y)) *
                       static_cast<size_t>(nx) +

@@ -57,9 +57,7 @@ void validate_density_grid(DensityGrid& grid, const std::string& where) {
                      " is empty or not finite; expected a finite box with min below max on "
                      "every axis");
   }
-  const uint64_t voxels = saturating_multiply(
-      saturating_multiply(static_cast<uint64_t>(grid.nx), static_cast<uint64_t>(grid.ny)),
-      static_cast<uint64_t>(grid.nz));
+  const uint64_t voxels = grid.voxel_count();
   if (grid.values.size() != voxels) {
     throw SceneError(where + ": " + std::to_string(grid.values.size()) + " values for " +
                      std::to_string(grid.nx) + " x " + std::to_string(grid.ny) + " x " +
@@ -110,9 +108,7 @@ DensityGrid read_density_grid(const std::string& path, const MemoryBudget& budge
   grid.hi = {read_le<float>(bytes, 36), read_le<float>(bytes, 40), read_le<float>(bytes, 44)};
   grid.source = path;
   if (grid.nx < 1 || grid.ny < 1 || grid.nz < 1) validate_density_grid(grid, path);
-  const uint64_t voxels = saturating_multiply(
-      saturating_multiply(static_cast<uint64_t>(grid.nx), static_cast<uint64_t>(grid.ny)),
-      static_cast<uint64_t>(grid.nz));
+  const uint64_t voxels = grid.voxel_count();
   const uint64_t data_bytes = saturating_multiply(voxels, 4);
   if (!budget.allows(data_bytes))
     throw SceneError(path + ": " + budget.exceeded("its voxels", data_bytes));

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <type_traits>
 
 #include "kernels/physics/medium/free_flight.h"
 #include "kernels/physics/medium/henyey_greenstein.h"
@@ -33,8 +34,7 @@ struct Flight {
 // The free flight of one lane type F through medium m (any ParticipatingMedium at F) with
 // path-level spectral MIS, from origin along w up to the boundary at t_hit. Scattering at t
 // weights by sigma_s T(t) / pdf(t) per channel and takes each channel's share of pdf(t);
-// reaching the boundary weights by transmittance over the survival probability. Both outcomes
-// are computed and selected.
+// reaching the boundary weights by transmittance over the survival probability.
 template <class F, class M>
 Flight<F> free_flight(const M& m, const lane::Vec3Of<F>& origin, const lane::Vec3Of<F>& w,
                       const lane::Vec3Of<F>& p, const lane::Vec3Of<F>& beta, F t_hit, F u_channel,
@@ -45,12 +45,23 @@ Flight<F> free_flight(const M& m, const lane::Vec3Of<F>& origin, const lane::Vec
   const V x = origin + w * t;
   const auto scattered = t < t_hit;
   const auto crossed = !scattered && t_hit < F(kInfinity);
-  const V tr_hit = m.transmittance(origin, w, t_hit);
+  // Lanes compute both outcomes and select; one slot (F = float) computes only the one it takes,
+  // since in a grid medium each transmittance is a voxel walk. The other's values are never
+  // selected.
+  const auto needs = [](const auto& outcome) {
+    if constexpr (std::is_same_v<F, float>) {
+      return static_cast<bool>(outcome);
+    } else {
+      return true;
+    }
+  };
+  const V one{F(1.0f), F(1.0f), F(1.0f)};
+  const V tr_hit = needs(crossed) ? m.transmittance(origin, w, t_hit) : one;
   const F survival = dot(p, tr_hit);
-  const V tr = m.transmittance(origin, w, t);
-  const V channel_pdfs = m.channel_pdfs(origin, w, t, tr);
+  const V tr = needs(scattered) ? m.transmittance(origin, w, t) : one;
+  const V channel_pdfs = needs(scattered) ? m.channel_pdfs(origin, w, t, tr) : one;
   const F pdf = dot(p, channel_pdfs);
-  const V sigma_s = m.scattering(x);
+  const V sigma_s = needs(scattered) ? m.scattering(x) : one;
   const auto channel = [&](F b, F q, F s, F tr_c, F tr_hit_c, F pdf_c) {
     return std::pair{
         select(scattered, b * s * tr_c / pdf, select(crossed, b * tr_hit_c / survival, b)),
@@ -172,11 +183,12 @@ Vec3 keep_clear_of_boundary(const KernelContext& ctx, const PathState& state, ui
 // per channel, 0 in a channel that does not interact (spectral MIS may scatter following
 // another). Its AOV normal faces back along the arriving ray.
 Rgb single_scattering_albedo(const MediumInfo& m, Vec3 x) {
-  const Rgb sigma_s = m.visit([&](const auto& me) -> Rgb { return me.scattering(x); });
-  const Rgb sigma_t = m.visit([&](const auto& me) -> Rgb { return me.extinction(x); });
-  Rgb a(0.0f);
-  for (int c = 0; c < 3; ++c) a[c] = sigma_t[c] > 0 ? sigma_s[c] / sigma_t[c] : 0.0f;
-  return a;
+  return m.visit([&](const auto& medium) {
+    const Rgb sigma_s = medium.scattering(x), sigma_t = medium.extinction(x);
+    Rgb a(0.0f);
+    for (int c = 0; c < 3; ++c) a[c] = sigma_t[c] > 0 ? sigma_s[c] / sigma_t[c] : 0.0f;
+    return a;
+  });
 }
 
 }  // namespace
@@ -190,9 +202,8 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
   const size_t n = q.medium.size();
   size_t homogeneous = n;
   if (ctx.has_grid_media) {
-    homogeneous = q.medium.partition([&](uint32_t s) {
-      return ctx.media[static_cast<size_t>(state.medium[s])].grid.grid == nullptr;
-    });
+    homogeneous = q.medium.partition(
+        [&](uint32_t s) { return !ctx.media[static_cast<size_t>(state.medium[s])].is_grid(); });
   }
   FlightResults& flights = q.flights;
   for_each_chunk(

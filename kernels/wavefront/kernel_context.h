@@ -69,11 +69,13 @@ struct MediumInfo {
   // apart; only SNEE's code, which runs where snee_eligible() holds, reads `medium` directly.
   HomogeneousMedium medium;
   GridMedium grid;
-  bool snee_eligible() const { return grid.grid == nullptr; }
+  bool is_grid() const { return grid.grid != nullptr; }
+  // SNEE's closed forms hold in a homogeneous medium only (GridMedium::kSneeEligible).
+  bool snee_eligible() const { return !is_grid(); }
   // f(the medium as its own type), so each kind's members inline into the caller.
   template <class Visit>
   auto visit(Visit&& f) const {
-    return grid.grid ? f(grid) : f(medium);
+    return is_grid() ? f(grid) : f(medium);
   }
   Rgb transmittance(Vec3 x, Vec3 w, float t) const {
     return visit([&](const auto& m) -> Rgb { return m.transmittance(x, w, t); });
