@@ -132,7 +132,8 @@ TEST_F(MpiSignals, CtrlCToMpirunWritesTheImageSoFarAndFailsTheJob) {
 // A rank stopped with SIGSTOP never joins: the other gives up after --join-timeout with a
 // clear error, and mpirun ends the job with a non-zero exit code instead of waiting for ever.
 TEST_F(MpiSignals, AStoppedRankHoldsNoOtherForEver) {
-  TwoRanks two(dir_, {"--spp", "1000", "--join-timeout", "2", "-o", (dir_ / "s.exr").string()});
+  TwoRanks two(dir_, {"--spp", std::to_string(test::outlasting_spp(1000)), "--join-timeout", "2",
+                      "-o", (dir_ / "s.exr").string()});
   ASSERT_TRUE(two.ready) << two.run.output();
   ASSERT_EQ(kill(two.ranks.back(), SIGSTOP), 0);
   const int code = two.run.wait(std::chrono::seconds(300));
@@ -147,9 +148,11 @@ TEST_F(MpiSignals, AStoppedRankHoldsNoOtherForEver) {
 // ranks writes the image the single-process uninterrupted render writes.
 TEST_F(MpiSignals, AKilledJobResumesToTheSingleProcessImage) {
   const std::string exr = (dir_ / "k.exr").string();
-  const std::string common = " render builtin:default --resolution 32x24 --spp 800 --quiet ";
+  const std::string spp = std::to_string(test::outlasting_spp(800));
+  const std::string common =
+      " render builtin:default --resolution 32x24 --spp " + spp + " --quiet ";
   {
-    TwoRanks two(dir_, {"--spp", "800", "--checkpoint", "0.05", "-o", exr});
+    TwoRanks two(dir_, {"--spp", spp, "--checkpoint", "0.05", "-o", exr});
     ASSERT_TRUE(two.ready) << two.run.output();
     ASSERT_TRUE(test::wait_for([&] {
       return fs::exists(exr + ".checkpoint.0-of-2") && fs::exists(exr + ".checkpoint.1-of-2");

@@ -111,13 +111,14 @@ void ResumeCli::kill_and_resume_twice(const std::vector<std::string>& scene_args
 }
 
 TEST_F(ResumeCli, KilledStoppedAndResumedRenderIsBitwiseTheUninterruptedOne) {
-  kill_and_resume_twice(
-      {"builtin:default", "--resolution", "48x32", "--spp", "256", "--samples-per-unit", "4"});
+  kill_and_resume_twice({"builtin:default", "--resolution", "48x32", "--spp",
+                         std::to_string(test::outlasting_spp(256)), "--samples-per-unit", "4"});
 }
 
 TEST_F(ResumeCli, NoiseTargetDecisionsSurviveTheResume) {
-  kill_and_resume_twice({"builtin:sphere-directional-r0.2", "--resolution", "48x48", "--spp", "512",
-                         "--tile-size", "8", "--samples-per-unit", "4", "--noise-target", "0.1"});
+  kill_and_resume_twice({"builtin:sphere-directional-r0.2", "--resolution", "48x48", "--spp",
+                         std::to_string(test::outlasting_spp(512)), "--tile-size", "8",
+                         "--samples-per-unit", "4", "--noise-target", "0.1"});
 }
 
 constexpr const char* kSmall = "builtin:furnace-sphere --resolution 16x16 --spp 16 --quiet ";
