@@ -3,7 +3,7 @@
 // (positions, indices, normals and texture coordinates), the first camera, KHR_lights_punctual
 // lights and materials translated to snee's with their base colour textures (docs/scene-format.md
 // has the table). Nothing here
-// knows the JSON scene that includes the asset; scene_loader.cpp applies its overrides.
+// knows the JSON scene that includes the asset; scene_reader_include.cpp applies its overrides.
 // Every failure is a SceneError "<file>: <glTF element>: <what is wrong>", e.g.
 // "a.gltf: meshes[2].primitives[0]: the POSITION accessor 7 reaches past its buffer view".
 #pragma once

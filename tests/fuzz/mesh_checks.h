@@ -1,4 +1,4 @@
-// What the scene loader does with every mesh it reads (scene_loader.cpp), so that the mesh
+// What the scene loader does with every mesh it reads (scene_reader_shapes.cpp), so that the mesh
 // fuzzers reach the whole-mesh code with the same arbitrary meshes the readers let through.
 #pragma once
 
