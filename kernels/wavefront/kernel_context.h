@@ -19,6 +19,7 @@
 #include "kernels/wavefront/snee_counters.h"
 #include "scene/camera_frame.h"
 #include "scene/embree_scene.h"
+#include "scene/memory_budget.h"
 #include "scene/scene.h"
 #include "scene/texture_set.h"
 
@@ -70,12 +71,14 @@ struct MediumInfo {
   HomogeneousMedium medium;
   GridMedium grid;
   bool is_grid() const { return grid.grid != nullptr; }
-  // SNEE's closed forms hold in a homogeneous medium only (GridMedium::kSneeEligible).
-  bool snee_eligible() const { return !is_grid(); }
   // f(the medium as its own type), so each kind's members inline into the caller.
   template <class Visit>
   auto visit(Visit&& f) const {
     return is_grid() ? f(grid) : f(medium);
+  }
+  // Each medium kind declares whether SNEE's closed forms hold in it (kSneeEligible).
+  bool snee_eligible() const {
+    return visit([](const auto& m) { return m.kSneeEligible; });
   }
   Rgb transmittance(Vec3 x, Vec3 w, float t) const {
     return visit([&](const auto& m) -> Rgb { return m.transmittance(x, w, t); });
@@ -172,8 +175,11 @@ struct KernelCounters {
 };
 
 struct KernelContext {
+  // Throws std::invalid_argument where what the scene makes the context build (the manifold
+  // strategy's exit trees) would not fit in `budget`.
   KernelContext(const Scene& scene, const EmbreeScene& embree, const LightTable& lights,
-                Integrator integrator, uint32_t seed, int max_depth, const SneeOptions& snee);
+                Integrator integrator, uint32_t seed, int max_depth, const SneeOptions& snee,
+                const MemoryBudget& budget = MemoryBudget{});
 
   const Scene* scene;
   const EmbreeScene* embree;
