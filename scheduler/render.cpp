@@ -191,7 +191,7 @@ RenderResult render_compiled_level(const Scene& scene, const RenderOptions& opti
   const EmbreeScene embree(scene);
   const LightTable lights(scene, options.light_selection);
   KernelContext ctx(scene, embree, lights, integrator, options.seed, options.max_depth,
-                    snee_options);
+                    snee_options, options.memory_budget);
   ctx.sample_clamp = options.sample_clamp;
   ctx.record_aovs = options.aovs.any();
   const auto sampling_start = std::chrono::steady_clock::now();

@@ -8,12 +8,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "scene/input_file.h"
 #include "scene/memory_budget.h"
 #include "scene/scene_loader.h"
 #include "tests/support/command_line.h"
+#include "tests/support/icosphere.h"
 #include "tests/support/scene_error_of.h"
 #include "tests/support/test_directory.h"
 
@@ -168,6 +170,50 @@ TEST_F(MaxMemoryCliTest, BudgetAppliesToTheSceneAndItsMeshes) {
             std::string::npos)
       << out.output;
   out = snee("render -q --max-memory 8M " + path);
+  EXPECT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "scene.exr"));
+}
+
+// SNEE's manifold strategy builds, for a closed flat-shaded mesh under a directional light, a
+// tree over its facets (manifold_mesh.h) that grows with the mesh; it is counted against the
+// budget too, after the mesh itself fit. A 20480-triangle icosphere's tree needs 3.2 MiB, its
+// PLY arrays 0.4 MiB, its file 0.8 MiB and the 16x16 film on one thread 1.0 MiB; `pt` builds no
+// tree, so the same scene renders there within the same budget, and `snee` within 4 MiB.
+TEST_F(MaxMemoryCliTest, ExitTreesBeyondTheBudgetFailBeforeRendering) {
+  const TriangleMesh ball = test::icosphere(5, false);
+  std::ostringstream ply;
+  ply << "ply\nformat ascii 1.0\nelement vertex " << ball.positions.size()
+      << "\nproperty float x\nproperty float y\nproperty float z\nelement face "
+      << ball.triangle_count() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const Vec3& p : ball.positions) ply << p.x << ' ' << p.y << ' ' << p.z << '\n';
+  for (size_t t = 0; t < ball.triangle_count(); ++t) {
+    ply << "3 " << ball.indices[3 * t] << ' ' << ball.indices[3 * t + 1] << ' '
+        << ball.indices[3 * t + 2] << '\n';
+  }
+  write("ball.ply", ply.str());
+  const std::string path =
+      write("scene.json",
+            R"({"camera": {"type": "pinhole", "position": [0, 0, 4], "look_at": [0, 0, 0],
+                "up": [0, 1, 0], "fov": 30, "resolution": [16, 16]},
+                "render": {"spp": 1},
+                "materials": [{"name": "glass", "type": "dielectric", "ior": 1.5}],
+                "media": [{"name": "milk", "sigma_s": [2, 2, 2], "sigma_a": [0.02, 0.02, 0.02]}],
+                "shapes": [{"name": "ball", "type": "mesh", "file": "ball.ply",
+                            "material": "glass", "medium": "milk"}],
+                "lights": [{"type": "directional", "direction": [1, 1, 1], "irradiance": 1}]})");
+  Outcome out = snee("render -q --threads 1 --integrator snee --max-memory 2M " + path);
+  EXPECT_EQ(out.exit_code, 1) << out.output;
+  EXPECT_NE(out.output.find("the manifold strategy's exit trees of the mesh 'ball' (20480 "
+                            "triangles, a tree for each of 1 directional lights) need 3.2 MiB, "
+                            "more than the memory budget of 2.0 MiB (--max-memory)"),
+            std::string::npos)
+      << out.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "scene.exr"));
+  out = snee("render -q --threads 1 --integrator pt --max-memory 2M " + path);
+  EXPECT_EQ(out.exit_code, 0) << out.output;
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "scene.exr"));
+  fs::remove(dir_ / "out" / "scene.exr");
+  out = snee("render -q --threads 1 --integrator snee --max-memory 4M " + path);
   EXPECT_EQ(out.exit_code, 0) << out.output;
   EXPECT_TRUE(fs::exists(dir_ / "out" / "scene.exr"));
 }

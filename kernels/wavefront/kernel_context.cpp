@@ -1,5 +1,6 @@
 #include "kernels/wavefront/kernel_context.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -109,10 +110,26 @@ bool nothing_reaches_into(const Scene& s, size_t sphere) {
   return true;
 }
 
-// A mesh boundary's exit trees for the manifold strategy, one per directional light.
+// A mesh boundary's exit trees for the manifold strategy, one per directional light; their
+// size grows with the mesh, so it is checked against the budget before any is built.
 std::shared_ptr<const std::vector<FacetExitTree>> facet_exit_trees(const Scene& s,
-                                                                   const Shape& mesh, float eta) {
+                                                                   const Shape& mesh, float eta,
+                                                                   const MemoryBudget& budget) {
+  const auto directional =
+      static_cast<uint64_t>(std::count_if(s.lights.begin(), s.lights.end(), [](const Light& light) {
+        return light.kind == LightKind::kDirectional;
+      }));
+  const uint64_t triangles = mesh.mesh.triangle_count();
+  const uint64_t bytes = saturating_multiply(directional, FacetExitTree::bytes_at_most(triangles));
+  if (!budget.allows(bytes)) {
+    throw std::invalid_argument(
+        budget.exceeded("the manifold strategy's exit trees of the mesh '" + mesh.name + "' (" +
+                            std::to_string(triangles) + " triangles, a tree for each of " +
+                            std::to_string(directional) + " directional lights)",
+                        bytes));
+  }
   auto trees = std::make_shared<std::vector<FacetExitTree>>();
+  trees->reserve(directional);
   for (const Light& light : s.lights) {
     if (light.kind == LightKind::kDirectional) trees->emplace_back(mesh.mesh, eta, light.direction);
   }
@@ -123,7 +140,7 @@ std::shared_ptr<const std::vector<FacetExitTree>> facet_exit_trees(const Scene& 
 
 KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTable& l,
                              Integrator integ, uint32_t seed_, int max_depth_,
-                             const SneeOptions& snee_)
+                             const SneeOptions& snee_, const MemoryBudget& budget)
     : scene(&s),
       embree(&e),
       lights(&l),
@@ -189,7 +206,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                !shape.smooth_shading) {
       if (integ == Integrator::kSnee) {
         m.manifold_boundary = static_cast<int32_t>(i);
-        m.manifold_mesh = facet_exit_trees(s, shape, info.dielectric.eta);
+        m.manifold_mesh = facet_exit_trees(s, shape, info.dielectric.eta, budget);
       }
     } else {
       m.manifold_unsupported = true;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/vec3d.h"
+#include "scene/memory_budget.h"
 
 namespace snee {
 
@@ -34,6 +35,8 @@ FacetExitTree::FacetExitTree(const TriangleMesh& mesh, float eta, Vec3 light) : 
   across_a_ = normalize(std::abs(l.x) < 0.9 ? cross(l, Vec3d(1, 0, 0)) : cross(l, Vec3d(0, 1, 0)));
   across_b_ = cross(along_, across_a_);
   double scale = 0;
+  // Reserved in full so the memory is what bytes_at_most promised, not a doubling past it.
+  facets_.reserve(mesh.triangle_count());
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const Vec3& p0 = mesh.positions[mesh.indices[3 * t]];
     const Vec3& p1 = mesh.positions[mesh.indices[3 * t + 1]];
@@ -56,6 +59,12 @@ FacetExitTree::FacetExitTree(const TriangleMesh& mesh, float eta, Vec3 light) : 
     nodes_.reserve(2 * facets_.size() / kLeafFacets + 1);
     build(0, static_cast<uint32_t>(facets_.size()));
   }
+}
+
+uint64_t FacetExitTree::bytes_at_most(uint64_t triangles) {
+  const uint64_t nodes = saturating_add(saturating_multiply(2, triangles) / kLeafFacets, 1);
+  return saturating_add(saturating_multiply(triangles, sizeof(Facet)),
+                        saturating_multiply(nodes, sizeof(Node)));
 }
 
 Vec3d FacetExitTree::beam_space(Vec3d p) const {

@@ -45,6 +45,9 @@ class FacetExitTree {
   // The facets of `mesh` (world space, outward winding) that face `light` (unit direction
   // toward it) and refract it into the inside (relative index eta = inside / outside).
   FacetExitTree(const TriangleMesh& mesh, float eta, Vec3 light);
+  // The most bytes one tree over a mesh of `triangles` triangles holds (every facet lit, a
+  // full binary tree over them), for the memory budget to be checked before it is built.
+  static uint64_t bytes_at_most(uint64_t triangles);
 
   Vec3 light() const { return light_; }
 
