@@ -1,14 +1,12 @@
 // glTF 2.0 import: a cube the test writes as .gltf (base64 buffer) and as .glb reaches the scene
 // with its node transforms, normals, texture coordinates, camera, lights and materials; a snee
-// scene includes it and overrides materials and media by name; bad assets name the file and
-// the element; and a public sample asset from Debian's assimp-testmodels loads.
+// scene includes it and overrides materials and media by name; and a public sample asset from
+// Debian's assimp-testmodels loads. Bad assets are test_gltf_errors.cpp.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -17,8 +15,8 @@
 #include "kernels/physics/bsdf/fresnel.h"
 #include "scene/gltf_reader.h"
 #include "scene/scene_loader.h"
+#include "tests/support/gltf_cube.h"
 #include "tests/support/scene_error_of.h"
-#include "tests/support/test_directory.h"
 #include "tests/support/texture_images.h"
 
 namespace snee {
@@ -26,190 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::string base64(const std::string& bytes) {
-  static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    uint32_t n = static_cast<unsigned char>(bytes[i]) << 16;
-    if (i + 1 < bytes.size()) n |= static_cast<unsigned char>(bytes[i + 1]) << 8;
-    if (i + 2 < bytes.size()) n |= static_cast<unsigned char>(bytes[i + 2]);
-    out += kAlphabet[(n >> 18) & 63];
-    out += kAlphabet[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? kAlphabet[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? kAlphabet[n & 63] : '=';
-  }
-  return out;
-}
-
-template <typename T>
-void append(std::string& bytes, const T& value) {
-  bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
-}
-
-// A unit cube centred at the origin with 4 vertices per face (split where normals differ, as
-// exporters write it), counter-clockwise seen from outside. Buffer: positions, normals, uvs,
-// uint16 indices.
-struct CubeBuffer {
-  std::string bytes;
-  size_t normals_offset = 0, uvs_offset = 0, indices_offset = 0;
-};
-
-CubeBuffer cube_buffer() {
-  CubeBuffer cube;
-  std::vector<float> positions, normals;
-  std::vector<uint16_t> indices;
-  for (int axis = 0; axis < 3; ++axis) {
-    for (const float side : {-1.0f, 1.0f}) {
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      const uint16_t first = static_cast<uint16_t>(positions.size() / 3);
-      const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-      for (const auto& c : corners) {
-        float p[3], n[3] = {0, 0, 0};
-        p[axis] = 0.5f * side;
-        p[u] = 0.5f * c[0];
-        p[v] = 0.5f * c[1];
-        n[axis] = side;
-        positions.insert(positions.end(), p, p + 3);
-        normals.insert(normals.end(), n, n + 3);
-      }
-      // (u, v, axis) is right-handed, so corners in that order face +axis.
-      const uint16_t plus[6] = {0, 1, 2, 0, 2, 3}, minus[6] = {0, 2, 1, 0, 3, 2};
-      for (const uint16_t k : side > 0 ? plus : minus) indices.push_back(first + k);
-    }
-  }
-  for (const float x : positions) append(cube.bytes, x);
-  cube.normals_offset = cube.bytes.size();
-  for (const float x : normals) append(cube.bytes, x);
-  cube.uvs_offset = cube.bytes.size();
-  for (size_t i = 0; i < positions.size() / 3; ++i) {
-    append(cube.bytes, static_cast<float>(i % 2));
-    append(cube.bytes, static_cast<float>((i / 2) % 2));
-  }
-  cube.indices_offset = cube.bytes.size();
-  for (const uint16_t i : indices) append(cube.bytes, i);
-  return cube;
-}
-
-// The asset: a parent node translated by (0, 0, -3) holding a child scaled by 2 with the cube,
-// a camera at the origin, a directional light shining down -y and a point light at (0, 4, 0).
-// The cube's material is a rough transmitting volume named "jade".
-json cube_document(const CubeBuffer& cube, const std::string& buffer_uri) {
-  json buffer = {{"byteLength", cube.bytes.size()}};
-  if (!buffer_uri.empty()) buffer["uri"] = buffer_uri;
-  return {{"asset", {{"version", "2.0"}}},
-          {"extensionsUsed",
-           {"KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior",
-            "KHR_materials_volume"}},
-          {"scene", 0},
-          {"scenes", {{{"nodes", {0, 2, 3, 4}}}}},
-          {"nodes",
-           {{{"name", "holder"}, {"translation", {0, 0, -3}}, {"children", {1}}},
-            {{"name", "cube"}, {"scale", {2, 2, 2}}, {"mesh", 0}},
-            {{"name", "eye"}, {"camera", 0}},
-            // A rotation by -90 degrees about x turns local -z into -y.
-            {{"name", "sun"},
-             {"rotation", {-std::sqrt(0.5), 0, 0, std::sqrt(0.5)}},
-             {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}},
-            {{"name", "bulb"},
-             {"translation", {0, 4, 0}},
-             {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}}},
-          {"cameras",
-           {{{"type", "perspective"},
-             {"perspective", {{"yfov", 0.5}, {"aspectRatio", 2.0}, {"znear", 0.1}}}}}},
-          {"extensions",
-           {{"KHR_lights_punctual",
-             {{"lights",
-               {{{"type", "directional"}, {"color", {1, 0.5, 0.25}}, {"intensity", 4}},
-                {{"type", "point"}, {"intensity", 10}}}}}}}},
-          {"meshes",
-           {{{"name", "box"},
-             {"primitives",
-              {{{"attributes", {{"POSITION", 0}, {"NORMAL", 1}, {"TEXCOORD_0", 2}}},
-                {"indices", 3},
-                {"material", 0}}}}}}},
-          {"materials",
-           {{{"name", "jade"},
-             {"pbrMetallicRoughness",
-              {{"baseColorFactor", {0.2, 0.8, 0.3, 1}},
-               {"metallicFactor", 0},
-               {"roughnessFactor", 0.5}}},
-             {"extensions",
-              {{"KHR_materials_transmission", {{"transmissionFactor", 1}}},
-               {"KHR_materials_ior", {{"ior", 1.4}}},
-               {"KHR_materials_volume",
-                {{"thicknessFactor", 1},
-                 {"attenuationColor", {0.5, 0.25, 1}},
-                 {"attenuationDistance", 2}}}}}}}},
-          {"buffers", {buffer}},
-          {"bufferViews",
-           {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", cube.normals_offset}},
-            {{"buffer", 0},
-             {"byteOffset", cube.normals_offset},
-             {"byteLength", cube.uvs_offset - cube.normals_offset}},
-            {{"buffer", 0},
-             {"byteOffset", cube.uvs_offset},
-             {"byteLength", cube.indices_offset - cube.uvs_offset}},
-            {{"buffer", 0},
-             {"byteOffset", cube.indices_offset},
-             {"byteLength", cube.bytes.size() - cube.indices_offset}}}},
-          {"accessors",
-           {{{"bufferView", 0},
-             {"componentType", 5126},
-             {"count", 24},
-             {"type", "VEC3"},
-             {"min", {-0.5, -0.5, -0.5}},
-             {"max", {0.5, 0.5, 0.5}}},
-            {{"bufferView", 1}, {"componentType", 5126}, {"count", 24}, {"type", "VEC3"}},
-            {{"bufferView", 2}, {"componentType", 5126}, {"count", 24}, {"type", "VEC2"}},
-            {{"bufferView", 3}, {"componentType", 5123}, {"count", 36}, {"type", "SCALAR"}}}}};
-}
-
-std::string padded(std::string s, char pad) {
-  while (s.size() % 4 != 0) s += pad;
-  return s;
-}
-
-std::string glb(const json& doc, const std::string& bin) {
-  const std::string text = padded(doc.dump(), ' ');
-  const std::string data = padded(bin, '\0');
-  std::string out = "glTF";
-  append(out, uint32_t{2});
-  append(out, static_cast<uint32_t>(12 + 8 + text.size() + 8 + data.size()));
-  append(out, static_cast<uint32_t>(text.size()));
-  out += "JSON";
-  out += text;
-  append(out, static_cast<uint32_t>(data.size()));
-  out += std::string("BIN\0", 4);
-  out += data;
-  return out;
-}
-
-class GltfTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = test::fresh_test_directory("test_gltf");
-    cube_ = cube_buffer();
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  json embedded() const {
-    return cube_document(cube_, "data:application/octet-stream;base64," + base64(cube_.bytes));
-  }
-
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
-
-  std::string write_gltf(const json& doc, const std::string& name = "cube.gltf") const {
-    return write(name, doc.dump(2));
-  }
-
-  fs::path dir_;
-  CubeBuffer cube_;
-};
+using test::cube_document;
+using test::glb;
+using test::GltfTest;
 
 void expect_near(Vec3 a, Vec3 b, float tolerance = 1e-5f) {
   EXPECT_NEAR(a.x, b.x, tolerance);
@@ -523,93 +340,6 @@ TEST(GltfShowcase, LoadsAsDescribed) {
   // The scene's sky first (a procedural environment image), then the asset's key light.
   EXPECT_EQ(scene.lights[0].kind, LightKind::kEnvMap);
   EXPECT_EQ(scene.lights[1].kind, LightKind::kSpot);
-}
-
-struct BadAsset {
-  std::string name;
-  std::function<void(json&)> damage;
-  std::string element;
-  std::string expectation;
-};
-
-TEST_F(GltfTest, BadAssetsNameTheFileAndTheElement) {
-  const std::vector<BadAsset> cases = {
-      {"index past the vertices",
-       [](json& d) {
-         d["accessors"][3]["bufferView"] = 0;
-         d["accessors"][3]["componentType"] = 5125;
-       },
-       "meshes[0].primitives[0]", "but the primitive has 24 vertices"},
-      {"accessor past its view", [](json& d) { d["accessors"][0]["count"] = 25; }, "accessors[0]",
-       "reach past the end of bufferViews[0]"},
-      {"positions of the wrong type", [](json& d) { d["accessors"][0]["type"] = "VEC2"; },
-       "accessors[0]", "POSITION needs VEC3 of FLOAT"},
-      {"normals that do not match the positions", [](json& d) { d["accessors"][1]["count"] = 23; },
-       "meshes[0].primitives[0]", "NORMAL has 23 elements, POSITION 24"},
-      {"triangle strips", [](json& d) { d["meshes"][0]["primitives"][0]["mode"] = 5; },
-       "meshes[0].primitives[0]", "snee reads triangle lists"},
-      {"a spot cone wider than a hemisphere",
-       [](json& d) {
-         d["extensions"]["KHR_lights_punctual"]["lights"][1] = {
-             {"type", "spot"}, {"spot", {{"outerConeAngle", 2.0}}}};
-       },
-       "extensions.KHR_lights_punctual.lights[1].spot.outerConeAngle", "(0, pi/2]"},
-      {"a spot falloff starting past its cone",
-       [](json& d) {
-         d["extensions"]["KHR_lights_punctual"]["lights"][1] = {
-             {"type", "spot"}, {"spot", {{"innerConeAngle", 0.6}, {"outerConeAngle", 0.5}}}};
-       },
-       "extensions.KHR_lights_punctual.lights[1].spot.innerConeAngle", "[0, outerConeAngle)"},
-      {"an unknown light type",
-       [](json& d) { d["extensions"]["KHR_lights_punctual"]["lights"][1]["type"] = "area"; },
-       "extensions.KHR_lights_punctual.lights[1]", "directional, point and spot"},
-      {"a node cycle", [](json& d) { d["nodes"][1]["children"] = {0}; }, "nodes[0]",
-       "reached twice"},
-      {"an orthographic camera",
-       [](json& d) {
-         d["cameras"][0] = {
-             {"type", "orthographic"},
-             {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"zfar", 2}, {"znear", 1}}}};
-       },
-       "cameras[0]", "only perspective cameras"},
-      {"an ior below 1",
-       [](json& d) { d["materials"][0]["extensions"]["KHR_materials_ior"]["ior"] = 0.5; },
-       "materials[0].extensions.KHR_materials_ior.ior", "expected a number in [1"},
-      {"an unknown required extension",
-       [](json& d) { d["extensionsRequired"] = {"KHR_draco_mesh_compression"}; },
-       "extensionsRequired", "KHR_draco_mesh_compression"},
-  };
-  for (const BadAsset& c : cases) {
-    json doc = embedded();
-    c.damage(doc);
-    const std::string path = write_gltf(doc, "bad.gltf");
-    const std::string message = test::scene_error_of([&] { load_gltf(path, Transform()); });
-    EXPECT_NE(message.find(path + ": " + c.element + ": "), std::string::npos)
-        << c.name << ": " << message;
-    EXPECT_NE(message.find(c.expectation), std::string::npos) << c.name << ": " << message;
-  }
-}
-
-TEST_F(GltfTest, BrokenFilesAreSceneErrors) {
-  const std::string truncated =
-      write("short.glb", glb(cube_document(cube_, ""), cube_.bytes).substr(0, 40));
-  EXPECT_NE(test::scene_error_of([&] {
-              load_gltf(truncated, Transform());
-            }).find(truncated + ": cannot read glTF binary (.glb) file"),
-            std::string::npos);
-  const std::string missing_bin = write_gltf(cube_document(cube_, "absent.bin"));
-  EXPECT_NE(test::scene_error_of([&] { load_gltf(missing_bin, Transform()); }).find("absent.bin"),
-            std::string::npos);
-}
-
-TEST_F(GltfTest, UnknownOverrideNameIsAnError) {
-  write_gltf(embedded());
-  const json doc = {{"include", {{{"file", "cube.gltf"}, {"materials", {{"jaed", "x"}}}}}}};
-  const std::string path = write("scene.json", doc.dump());
-  const std::string message = test::scene_error_of([&] { load_scene(path); });
-  EXPECT_NE(message.find("include[0].materials.jaed: the glTF file"), std::string::npos) << message;
-  EXPECT_NE(message.find("has no material named 'jaed' (it has 'jade')"), std::string::npos)
-      << message;
 }
 
 // Khronos' BoxTextured sample as Debian's assimp-testmodels ships it (scripts/setup.sh installs

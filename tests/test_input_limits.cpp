@@ -14,6 +14,7 @@
 #include "scene/input_file.h"
 #include "scene/memory_budget.h"
 #include "scene/scene_loader.h"
+#include "tests/support/cli_fixture.h"
 #include "tests/support/command_line.h"
 #include "tests/support/icosphere.h"
 #include "tests/support/scene_error_of.h"
@@ -112,19 +113,13 @@ TEST_F(InputLimitsTest, SceneFileMustBeARegularFile) {
             std::string::npos);
 }
 
-struct Outcome {
-  int exit_code = -1;
-  std::string output;
-};
+using test::Outcome;
 
 class MaxMemoryCliTest : public InputLimitsTest {
  protected:
   Outcome snee(const std::string& args) const {
-    const fs::path log = dir_ / "output.txt";
     Outcome result;
-    result.exit_code =
-        test::run_command("cd '" + dir_.string() + "' && '" SNEE_BINARY "' " + args, log);
-    result.output = test::read_text_file(log);
+    result.exit_code = test::run_in_directory(dir_, SNEE_BINARY, args, result.output);
     return result;
   }
   // A triangle lit by a constant sky at `resolution`.
