@@ -24,3 +24,13 @@ if(SNEE_SANITIZE)
                       -fno-omit-frame-pointer -g1)
   add_link_options(-fsanitize=${SNEE_SANITIZE})
 endif()
+
+# Code that runs once per command or test, never per ray or sample (the command line, the test
+# bodies of the scene and CLI layers), compiles at -O0 in a sanitized build: instrumented alike,
+# about 40% less compile time (test_cli.cpp: 37 s at -O1, 21 s at -O0), and no test waits on its
+# speed. The render's code keeps the build's -O1.
+function(snee_unoptimized_when_sanitized target)
+  if(SNEE_SANITIZE)
+    target_compile_options(${target} PRIVATE -O0)
+  endif()
+endfunction()

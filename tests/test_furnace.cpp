@@ -12,6 +12,7 @@
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
 #include "tests/support/render_helpers.h"
+#include "tests/support/test_size.h"
 
 namespace snee {
 namespace {
@@ -77,7 +78,7 @@ double largest_deviation(const Film& film) {
 TEST(FurnaceCrossing, BunnyPathsCrossItsSurfaceTheRightWay) {
   Scene scene = load_builtin_scene("furnace-bunny").scene;
   RenderOptions options;
-  options.spp = 1024;
+  options.spp = test::sanitized_share(1024);
   options.seed = 7;
   const Film film = render(scene, options).film;
   EXPECT_EQ(wrong_samples(film, options.spp), 0);
@@ -91,7 +92,7 @@ TEST(FurnaceCrossing, BunnyPathsCrossItsSurfaceTheRightWay) {
 TEST(FurnaceCrossing, BunnyGrazingRaysDoNotExitWithoutEntering) {
   Scene scene = load_builtin_scene("furnace-bunny").scene;
   RenderOptions options;
-  options.spp = 4096;
+  options.spp = test::sanitized_share(4096);
   options.seed = 1;
   const Film film = render(scene, options).film;
   EXPECT_EQ(wrong_samples(film, options.spp), 0);

@@ -8,6 +8,7 @@
 #include "scheduler/render.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/statistics.h"
+#include "tests/support/test_size.h"
 
 namespace snee {
 namespace {
@@ -53,7 +54,7 @@ void expect_sphere_images_agree(const Scene& scene, const Film& a, const Film& b
 
 TEST(IndexMatched, NullBoundaryEqualsEtaOneDielectric) {
   RenderOptions options;
-  options.spp = 256;
+  options.spp = test::sanitized_share(256);
   options.seed = 11;
   const Scene with_surface = lit_sphere(MaterialKind::kDielectric);
   const Scene null_boundary = lit_sphere(MaterialKind::kNull);
@@ -69,7 +70,7 @@ TEST(IndexMatched, NullBoundaryEqualsEtaOneDielectric) {
 // SNEE behind a delta interface (docs/method.md 3.8), so the images would rightly differ by it.
 TEST(IndexMatched, SneeThroughEtaOneEqualsStraightNee) {
   RenderOptions options;
-  options.spp = 256;
+  options.spp = test::sanitized_share(256);
   const Scene with_surface = lit_sphere(MaterialKind::kDielectric);
   const Scene null_boundary = lit_sphere(MaterialKind::kNull);
   options.integrator = "snee";

@@ -17,6 +17,7 @@
 #include "tests/support/command_line.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/test_directory.h"
+#include "tests/support/test_size.h"
 
 namespace snee {
 namespace {
@@ -132,7 +133,7 @@ TEST_F(MpiSignals, CtrlCToMpirunWritesTheImageSoFarAndFailsTheJob) {
 // A rank stopped with SIGSTOP never joins: the other gives up after --join-timeout with a
 // clear error, and mpirun ends the job with a non-zero exit code instead of waiting for ever.
 TEST_F(MpiSignals, AStoppedRankHoldsNoOtherForEver) {
-  TwoRanks two(dir_, {"--spp", std::to_string(test::outlasting_spp(1000)), "--join-timeout", "2",
+  TwoRanks two(dir_, {"--spp", std::to_string(test::sanitized_share(1000)), "--join-timeout", "2",
                       "-o", (dir_ / "s.exr").string()});
   ASSERT_TRUE(two.ready) << two.run.output();
   ASSERT_EQ(kill(two.ranks.back(), SIGSTOP), 0);
@@ -148,7 +149,7 @@ TEST_F(MpiSignals, AStoppedRankHoldsNoOtherForEver) {
 // ranks writes the image the single-process uninterrupted render writes.
 TEST_F(MpiSignals, AKilledJobResumesToTheSingleProcessImage) {
   const std::string exr = (dir_ / "k.exr").string();
-  const std::string spp = std::to_string(test::outlasting_spp(800));
+  const std::string spp = std::to_string(test::sanitized_share(800));
   const std::string common =
       " render builtin:default --resolution 32x24 --spp " + spp + " --quiet ";
   {

@@ -22,6 +22,7 @@
 #include "tests/support/command_line.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/test_directory.h"
+#include "tests/support/test_size.h"
 
 namespace snee {
 namespace {
@@ -112,12 +113,12 @@ void ResumeCli::kill_and_resume_twice(const std::vector<std::string>& scene_args
 
 TEST_F(ResumeCli, KilledStoppedAndResumedRenderIsBitwiseTheUninterruptedOne) {
   kill_and_resume_twice({"builtin:default", "--resolution", "48x32", "--spp",
-                         std::to_string(test::outlasting_spp(256)), "--samples-per-unit", "4"});
+                         std::to_string(test::sanitized_share(256)), "--samples-per-unit", "4"});
 }
 
 TEST_F(ResumeCli, NoiseTargetDecisionsSurviveTheResume) {
   kill_and_resume_twice({"builtin:sphere-directional-r0.2", "--resolution", "48x48", "--spp",
-                         std::to_string(test::outlasting_spp(512)), "--tile-size", "8",
+                         std::to_string(test::sanitized_share(512)), "--tile-size", "8",
                          "--samples-per-unit", "4", "--noise-target", "0.1"});
 }
 

@@ -10,6 +10,7 @@
 #include "scene/scene_loader.h"
 #include "scheduler/render.h"
 #include "tests/support/render_helpers.h"
+#include "tests/support/test_size.h"
 
 namespace snee {
 namespace {
@@ -105,7 +106,7 @@ TEST_P(Schedules, EveryScheduleAndBatchSizeAgreesBitwiseOnASphere) {
   for (const char* name : {"builtin:sphere-cone-r0.04", "builtin:sphere-directional-smooth"}) {
     const Scene scene = small_scene(name, 32);
     RenderOptions base = small_options(GetParam());
-    base.spp = 8;
+    base.spp = test::sanitized_share(8);
     const RenderResult reference = render(scene, base);
     for (const char* schedule : {"global", "megakernel"}) {
       for (const int threads : {1, 2}) {

@@ -21,6 +21,7 @@
 #include "kernels/physics/snee/snee_strategies.h"
 #include "tests/support/chi2.h"
 #include "tests/support/statistics.h"
+#include "tests/support/test_size.h"
 
 namespace snee {
 namespace {
@@ -299,8 +300,9 @@ void print(const char* name, const Estimators& e) {
 }
 
 // Sample counts: enough that the MIS estimate's standard error is below 0.3% of the mean, so
-// that a 2% bias fails against references at least as precise.
-constexpr int64_t kSamples = 6'000'000;
+// that a 2% bias fails against references at least as precise (an eighth in the sanitized
+// build, test_size.h).
+constexpr int64_t kSamples = test::sanitized_share<int64_t>(6'000'000);
 
 TEST(SneeHalfSpace, CaseARough02Cone) {
   const Scene scene = cone_scene(kConeHalfAngle, 1.0f);

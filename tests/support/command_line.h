@@ -27,17 +27,6 @@ int run_in_directory(const std::filesystem::path& dir, const std::string& progra
 bool wait_for(const std::function<bool()>& condition,
               std::chrono::seconds timeout = std::chrono::seconds(60));
 
-// Samples per pixel for a render that only has to outlast a signal or a checkpoint. The
-// sanitized build (SNEE_TEST_SANITIZED) renders 20 to 30 times slower, so an eighth of them still
-// outlasts it and its CI phase saves minutes; every other build takes `samples` as written.
-constexpr int outlasting_spp(int samples) {
-#ifdef SNEE_TEST_SANITIZED
-  return samples / 8 > 0 ? samples / 8 : 1;
-#else
-  return samples;
-#endif
-}
-
 // A program started in the background (argv[0] is its path) with stdout and stderr in `log`;
 // killed, if still running, when this goes away.
 class BackgroundCommand {
