@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "kernels/physics/lights/light_table.h"
@@ -77,6 +78,22 @@ struct EnvScene {
   const Rgb& pixel(int x, int y) const { return scene.env_images[0].pixels[y * kEnvWidth + x]; }
 };
 
+// Adds kSamples light samples from the origin to `counts`, binned bins_u x bins_v in map (u, v)
+// space (row-major, v down).
+void bin_samples(const EnvScene& env, const LightTable& lights, int bins_u, int bins_v,
+                 uint64_t seed, std::vector<double>& counts) {
+  TestRng rng(seed);
+  for (int k = 0; k < kSamples; ++k) {
+    const float u_select = rng.uniform();
+    const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
+    ASSERT_TRUE(s.valid);
+    const Vec2 uv = map_uv(env.to_map(s.wi));
+    const int x = std::clamp(static_cast<int>(uv.x * bins_u), 0, bins_u - 1);
+    const int y = std::clamp(static_cast<int>(uv.y * bins_v), 0, bins_v - 1);
+    counts[y * bins_u + x] += 1;
+  }
+}
+
 // Samples binned in map (u,v) space, two by two bins per pixel, against escaped_pdf: a bin's
 // probability is its (u,v) area times escaped_pdf * 2 pi^2 sin(theta), the Jacobian of the
 // lat-long mapping. Within a pixel that product is constant, so one interior node per bin is
@@ -99,16 +116,7 @@ TEST(Lights, EnvMapChi2) {
     }
   }
   EXPECT_NEAR(total / kSamples, 1.0, 1e-5) << "escaped_pdf does not integrate to one";
-  TestRng rng(21);
-  for (int k = 0; k < kSamples; ++k) {
-    const float u_select = rng.uniform();
-    const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
-    ASSERT_TRUE(s.valid);
-    const Vec2 uv = map_uv(env.to_map(s.wi));
-    const int x = std::clamp(static_cast<int>(uv.x * kBinsU), 0, kBinsU - 1);
-    const int y = std::clamp(static_cast<int>(uv.y * kBinsV), 0, kBinsV - 1);
-    counts[y * kBinsU + x] += 1;
-  }
+  ASSERT_NO_FATAL_FAILURE(bin_samples(env, lights, kBinsU, kBinsV, 21, counts));
   EXPECT_GT(pearson_p_value(counts, expected), kMinPValue);
   expect_round_trip(env.scene, lights, Vec3(0.0f), 22);
 }
@@ -129,16 +137,7 @@ TEST(Lights, EnvMapPixelProbabilities) {
   }
   std::vector<double> counts(weight.size(), 0), expected(weight.size());
   for (size_t i = 0; i < weight.size(); ++i) expected[i] = kSamples * weight[i] / total;
-  TestRng rng(23);
-  for (int k = 0; k < kSamples; ++k) {
-    const float u_select = rng.uniform();
-    const LightSample s = lights.sample(Vec3(0.0f), u_select, rng.uniform2());
-    ASSERT_TRUE(s.valid);
-    const Vec2 uv = map_uv(env.to_map(s.wi));
-    const int x = std::clamp(static_cast<int>(uv.x * kEnvWidth), 0, kEnvWidth - 1);
-    const int y = std::clamp(static_cast<int>(uv.y * kEnvHeight), 0, kEnvHeight - 1);
-    counts[y * kEnvWidth + x] += 1;
-  }
+  ASSERT_NO_FATAL_FAILURE(bin_samples(env, lights, kEnvWidth, kEnvHeight, 23, counts));
   EXPECT_GT(pearson_p_value(counts, expected), kMinPValue);
 }
 

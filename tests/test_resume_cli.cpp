@@ -19,6 +19,7 @@
 
 #include "apps/checkpoint_file.h"
 #include "scene/film.h"
+#include "tests/support/cli_fixture.h"
 #include "tests/support/command_line.h"
 #include "tests/support/render_helpers.h"
 #include "tests/support/test_directory.h"
@@ -29,9 +30,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using test::contains;
 
 class ResumeCli : public ::testing::Test {
  protected:
