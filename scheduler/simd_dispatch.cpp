@@ -80,6 +80,8 @@ const std::vector<SimdModule>& levels() {
         m.backend = &compiled_backend();
       } else if (!SNEE_SIMD_DISPATCH) {
         m.status.detail = "not built (this build has SIMD dispatch off: -DSNEE_SIMD_DISPATCH=OFF)";
+      } else if (!simd_module_built(level)) {
+        m.status.detail = "not built (this build's -DSNEE_SIMD_MODULES leaves it out)";
       } else {
         m = load_simd_module(level, module_directories());
       }
@@ -101,8 +103,9 @@ const std::vector<SimdLevelStatus>& simd_levels() {
   return statuses;
 }
 
-bool simd_modules_built() {
-  return SNEE_SIMD_DISPATCH;
+bool simd_module_built(SimdLevel level) {
+  return (level == SimdLevel::kAvx2 && SNEE_SIMD_MODULE_AVX2) ||
+         (level == SimdLevel::kAvx512 && SNEE_SIMD_MODULE_AVX512);
 }
 
 SimdLevel widest_simd_level() {

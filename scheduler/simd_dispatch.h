@@ -36,8 +36,9 @@ SimdModule load_simd_module(SimdLevel level, const std::vector<std::filesystem::
 // runs (a module's code must never run where the CPU lacks its instructions).
 const std::vector<SimdLevelStatus>& simd_levels();
 
-// Whether this build made the modules of the levels wider than its own (SNEE_SIMD_DISPATCH).
-bool simd_modules_built();
+// Whether this build made the module of a level wider than its own (SNEE_SIMD_DISPATCH, for the
+// levels in SNEE_SIMD_MODULES); false for the level the program itself is built for.
+bool simd_module_built(SimdLevel level);
 
 // The widest usable level.
 SimdLevel widest_simd_level();

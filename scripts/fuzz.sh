@@ -7,10 +7,11 @@
 #   bash scripts/fuzz.sh [SECONDS_PER_FUZZER (default 60)] [FUZZER ...]
 #   bash scripts/fuzz.sh --runs FUZZER=RUNS [FUZZER=RUNS ...]
 #
-# FUZZER is scene_json, obj, ply or env_image (default: all four, one after another, one core
-# each). The first form explores for a time, from a random seed: new findings come from it. The
-# second replays the corpus and then makes exactly RUNS mutations from seed 1, the same inputs
-# on every machine, so that CI (.ci/run) fails only on what a run here would have found too.
+# FUZZER is scene_json, obj, ply or env_image (default: all four, as many at a time as there
+# are cores, one core each). The first form explores for a time, from a random seed: new
+# findings come from it. The second replays the corpus and then makes exactly RUNS mutations
+# from seed 1, the same inputs on every machine, so that CI (.ci/run) fails only on what a run
+# here would have found too.
 # Output goes to $SNEE_FUZZ_OUT (default out/fuzz/): <loader>/corpus holds the inputs this run
 # found interesting, <loader>/ its artefacts and <loader>/log the fuzzer's output.
 set -euo pipefail
@@ -67,25 +68,39 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 
-failed=()
-for name in "${fuzzers[@]}"; do
-  dir=$out/$name
-  rm -rf "$dir"
-  mkdir -p "$dir/corpus"
+# One fuzzer per core at a time: each is single-threaded, and with fixed runs and seeds the
+# inputs do not depend on what runs beside it.
+fuzz_one() {
+  local name=$1 dir=$out/$1 bound options dict status=0
   read -ra bound <<<"${limit[$name]}"
   options=("${bound[@]}" -timeout=10 -rss_limit_mb=2048
            -print_final_stats=1 -artifact_prefix="$dir/")
   dict=tests/fuzz/$name.dict
   [[ -f $dict ]] && options+=(-dict="$dict")
-  echo "fuzz_$name: ${limit[$name]}, artefacts in $dir/" >&2
-  status=0
   TMPDIR=$scratch build-fuzz/tests/fuzz/fuzz_"$name" "${options[@]}" "$dir/corpus" \
     "tests/fuzz/corpus/$name" >"$dir/log" 2>&1 || status=$?
+  echo "$status" >"$dir/status"
+}
+
+for name in "${fuzzers[@]}"; do
+  rm -rf "${out:?}/$name"
+  mkdir -p "$out/$name/corpus"
+  echo "fuzz_$name: ${limit[$name]}, artefacts in $out/$name/" >&2
+  while (($(jobs -rp | wc -l) >= $(nproc))); do wait -n || true; done
+  fuzz_one "$name" &
+done
+wait
+
+failed=()
+for name in "${fuzzers[@]}"; do
+  dir=$out/$name
+  status=$(cat "$dir/status" 2>/dev/null || echo "no status")
+  echo "fuzz_$name:" >&2
   grep -E '^(Done [0-9]+ runs|stat::peak_rss_mb)' "$dir/log" >&2 || true
   shopt -s nullglob
   artefacts=("$dir"/crash-* "$dir"/leak-* "$dir"/timeout-* "$dir"/oom-*)
   shopt -u nullglob
-  if ((status != 0 || ${#artefacts[@]} > 0)); then
+  if [[ $status != 0 ]] || ((${#artefacts[@]} > 0)); then
     failed+=("$name")
     echo "fuzz_$name FAILED (exit $status): ${artefacts[*]:-no artefact, see $dir/log}" >&2
     first_report='^==[0-9]+== ?ERROR|runtime error|^terminate called'

@@ -36,7 +36,7 @@ TEST(SimdDispatch, EveryLevelTheCpuRunsIsUsable) {
     if (!cpu_runs(s.level)) {
       EXPECT_FALSE(s.usable) << name;
       EXPECT_EQ(s.detail, "this CPU lacks it") << name;
-    } else if (simd_modules_built() || s.level == kCompiledSimdLevel) {
+    } else if (simd_module_built(s.level) || s.level == kCompiledSimdLevel) {
       EXPECT_TRUE(s.usable) << name << ": " << s.detail;
     }
   }
@@ -110,7 +110,7 @@ TEST(SimdDispatch, ModulesAreCheckedBeforeUse) {
   std::filesystem::remove_all(dir);
 
   for (const SimdLevel level : {SimdLevel::kAvx2, SimdLevel::kAvx512}) {
-    if (!simd_modules_built() || !cpu_runs(level)) continue;
+    if (!simd_module_built(level) || !cpu_runs(level)) continue;
     const SimdModule real = load_simd_module(level, {SNEE_TEST_MODULE_DIR});
     EXPECT_TRUE(real.status.usable) << real.status.detail;
     ASSERT_NE(real.backend, nullptr);

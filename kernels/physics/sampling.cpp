@@ -84,7 +84,7 @@ float Distribution1D::pmf(int cell) const {
 }
 
 Distribution2D::Distribution2D(std::span<const float> weights, int width, int height)
-    : width_(width), height_(height) {
+    : height_(height) {
   conditional_.reserve(height);
   std::vector<float> row_integrals(height);
   for (int y = 0; y < height; ++y) {

@@ -91,7 +91,7 @@ class Distribution2D {
  private:
   std::vector<Distribution1D> conditional_;  // one per row
   Distribution1D marginal_;
-  int width_ = 0, height_ = 0;
+  int height_ = 0;  // rows, for finding a point's row in pdf()
 };
 
 }  // namespace snee

@@ -29,7 +29,7 @@ void store_segment(const ShadowSegment& seg, size_t i, AlignedArray<float>& ox,
 }  // namespace
 
 void ProposalQueue::push(const SneeProposal& p, Strategy strategy, uint32_t slot) {
-  assert(size_ < capacity_);
+  assert(size_ < items_.slot.size());
   const size_t i = size_++;
   ProposalItems& q = items_;
   const SneeSuffix& s = p.suffix;

@@ -40,7 +40,7 @@ struct TopToBottomLights : TopToBottomLightLanes {
 // structure of arrays (work_items.h) the weighing loads its lanes from; room for two per exit.
 class ProposalQueue {
  public:
-  explicit ProposalQueue(size_t capacity) : items_(2 * capacity), capacity_(2 * capacity) {}
+  explicit ProposalQueue(size_t capacity) : items_(2 * capacity) {}
   void clear() { size_ = 0; }
   size_t size() const { return size_; }
   const ProposalItems& items() const { return items_; }
@@ -54,7 +54,7 @@ class ProposalQueue {
 
  private:
   ProposalItems items_;
-  size_t capacity_ = 0, size_ = 0;
+  size_t size_ = 0;
 };
 
 struct SubdivisionScratch {
