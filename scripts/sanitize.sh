@@ -18,6 +18,13 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
+for tool in clang clang++; do
+  if ! command -v "$tool" >/dev/null; then
+    echo "error: $tool not found (bash scripts/setup.sh installs it)" >&2
+    exit 1
+  fi
+done
+
 targets=(all)
 ctest_scope=()
 simd_modules="avx2;avx512"
@@ -25,16 +32,23 @@ if [[ ${1:-} == --ci ]]; then
   shift
   # Only the SIMD modules this machine runs (each is the kernels and scheduler compiled once
   # more; one it cannot load is only compiled, which the Release build does already). The
-  # probe asks the CPU what the program asks it (cpu_runs, kernels/simd/simd_level.h).
+  # probe calls the program's own cpu_runs (kernels/simd/simd_level.h), built by the same clang.
   probe=$(mktemp -d)
-  simd_modules=""
-  for level in avx2:x86-64-v3 avx512:x86-64-v4; do
-    printf 'int main() { __builtin_cpu_init(); return !__builtin_cpu_supports("%s"); }\n' \
-      "${level#*:}" >"$probe/cpu.cpp"
-    c++ "$probe/cpu.cpp" -o "$probe/cpu" && "$probe/cpu" && simd_modules+="${level%%:*};"
-  done
+  cat >"$probe/levels.cpp" <<'PROBE'
+#include <cstdio>
+#include "kernels/simd/simd_level.h"
+int main() {
+  const char* separator = "";
+  for (const snee::SimdLevel level : {snee::SimdLevel::kAvx2, snee::SimdLevel::kAvx512}) {
+    if (!snee::cpu_runs(level)) continue;
+    std::printf("%s%s", separator, snee::simd_level_name(level).data());
+    separator = ";";
+  }
+}
+PROBE
+  clang++ -std=c++20 -march=x86-64-v2 -I. "$probe/levels.cpp" -o "$probe/levels"
+  simd_modules=$("$probe/levels")
   rm -rf "$probe"
-  simd_modules=${simd_modules%;}
   echo "sanitized SIMD modules: ${simd_modules:-none} (those this CPU runs)" >&2
   targets=(snee_tests_scene snee_tests_physics snee_tests_kernels snee_tests_scheduler_ci
     snee_tests_cli)
@@ -60,12 +74,6 @@ fi
 # Clang, the sanitizers' home compiler: on 2 cores, against GCC 12 on the same targets
 # (.ci/README.md), its instrumented build took less time and its tests 323 s instead of 555.
 # The Release build stays GCC's, and a second compiler's warnings (as errors) are checked.
-for tool in clang clang++; do
-  if ! command -v "$tool" >/dev/null; then
-    echo "error: $tool not found (bash scripts/setup.sh installs it)" >&2
-    exit 1
-  fi
-done
 if [[ -f build-asan/CMakeCache.txt ]] &&
   ! grep -q '^CMAKE_CXX_COMPILER:FILEPATH=.*clang++' build-asan/CMakeCache.txt; then
   rm -rf build-asan  # configured by another compiler, which CMake cannot change in place
