@@ -250,12 +250,11 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
   if (!(r.u[3] < rate)) return;
   const float u_choice = r.u[3] / rate;
   const LightSample light = ctx.lights->sample(x_j, r.u[0], {r.u[1], r.u[2]});
-  // Directional lights only: a point light's exit points need a solve in two dimensions.
-  if (!light.valid || !light.delta || !std::isinf(light.distance) || !(light.pdf > 0) ||
-      is_black(light.radiance)) {
-    return;
-  }
-  if (!m.manifold_solves_for(light.wi)) {
+  // A spot light may leave x_j dark and still light the exit points, so only a directional
+  // light's radiance can end the search here.
+  const bool distant = std::isinf(light.distance);
+  if (!light.delta || !(light.pdf > 0) || (distant && is_black(light.radiance))) return;
+  if (!m.manifold_solves_for(light, x_j)) {
     counters.count(SneeCounter::kManifoldUnsupportedBoundary);
     return;
   }
@@ -267,12 +266,11 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
   s.x_i = state.vertex_i(slot);
   s.omega_in = state.direction_in_i(slot);
   s.x_j = x_j;
-  s.omega_o = light.wi;
   s.medium = m.medium;
   s.interface = interface;
   s.light_pdf = light.pdf;
   s.light_delta = true;
-  s.light_distant = true;
+  s.light_distant = distant;
   s.x_i_medium = x_i_medium;
   s.x_j_medium = true;
   s.manifold = true;
@@ -283,24 +281,30 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
   // t, its contribution scaled by `share` (the inverse of the probability it was chosen, the
   // rate aside: the rate is in the density the weights divide by).
   const auto connect = [&](Vec3 y, Vec3 n, Vec3 omega_r, double t, double share) {
-    const double cos_l = dot(n, light.wi);
-    const double jacobian =
-        refraction_volume_jacobian(n, light.wi, interface.eta, m.manifold_curvature, t);
-    if (!(cos_l > 0) || !(jacobian > 0)) return;
+    // A point or spot light is seen from y: its direction, distance and irradiance there (the
+    // same light: the selection does not depend on the point).
+    const LightSample at_y = distant ? light : ctx.lights->sample(y, r.u[0], {r.u[1], r.u[2]});
+    const double cos_l = dot(n, at_y.wi);
+    const double jacobian = refraction_volume_jacobian(n, at_y.wi, interface.eta,
+                                                       m.manifold_curvature, t, at_y.distance);
+    if (!(at_y.pdf > 0) || !(cos_l > 0) || !(jacobian > 0)) return;
     // docs/method.md 3.10: f_p T (1 - F_r) E cos_L / J per unit volume at x_j, over the
     // light's selection probability.
     const double scale = share * hg_phase(dot(w_before, -omega_r), m.medium.asymmetry(x_j)) *
                          (1.0 - fresnel_dielectric(static_cast<float>(cos_l), interface.eta)) *
                          cos_l / (jacobian * light.pdf * rate);
-    const Rgb unweighted = beta * light.radiance *
+    const Rgb unweighted = beta * at_y.radiance *
                            m.medium.transmittance(x_j, -omega_r, static_cast<float>(t)) *
                            static_cast<float>(scale);
     if (is_black(unweighted) || !is_finite(unweighted)) return;
     s.x_k = y;
     s.n_k = s.ns_k = n;
+    s.omega_o = at_y.wi;
+    s.manifold_light_distance = at_y.distance;
     const Vec3 inner = y - ctx.epsilon * n, outer = y + ctx.epsilon * n;
     const uint32_t first = add_visibility_segment(shadow, x_j, inner, 0.0f);
-    shadow.add_segment(outer, light.wi, kInfinity, kVisibilityOnly);
+    const ShadowRay to_light = shadow_ray_to_light(at_y, y, outer);
+    shadow.add_segment(outer, to_light.direction, to_light.t_max, kVisibilityOnly);
     if (s.x_i_medium) {
       queue_weighted(ctx, Strategy::kManifold, s, slot, unweighted, first, 2, shadow,
                      ConnectionKind::kManifold);
@@ -319,13 +323,19 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
   }
   const Shape& sphere = ctx.scene->shapes[boundary];
   const SphereExits exits =
-      sphere_exits_toward_light(sphere.center, sphere.radius, interface.eta, light.wi, x_j);
+      distant
+          ? sphere_exits_toward_light(sphere.center, sphere.radius, interface.eta, light.wi, x_j)
+          : sphere_exits_toward_point(sphere.center, sphere.radius, interface.eta,
+                                      x_j + light.wi * light.distance, x_j);
   if (exits.count == 0) counters.count(SneeCounter::kManifoldNoExit);
   for (int e = 0; e < exits.count; ++e) {
     const SphereExit& exit = exits.exit[static_cast<size_t>(e)];
     connect(exit.y, exit.n, exit.omega_r, exit.t, 1.0);
   }
-  if (ctx.snee.reflection_chains) {
+  if (ctx.snee.reflection_chains && !distant) {
+    // The chains are solved for a fixed light direction only (docs/method.md 3.12).
+    counters.count(SneeCounter::kManifoldChainsUnsupported);
+  } else if (ctx.snee.reflection_chains) {
     connect_reflection_chains(ctx, state, slot, m, sphere, interface, light, u_choice, rate, shadow,
                               counters);
   }

@@ -280,11 +280,12 @@ void subdivision(const KernelContext& ctx, PathState& state, StageQueues& q,
         // The manifold strategy would run at this x_j if the walk reached it (medium_event:
         // depth below the limit; docs/method.md 3.10).
         const LightSample& light = scratch.lights.samples[i];
-        if (light.delta && std::isinf(light.distance) && m.manifold_solves_for(light.wi) &&
+        if (m.manifold_solves_for(light, exits.x_k(i)) &&
             state.depth[s] + 1 < static_cast<uint32_t>(ctx.max_depth)) {
           p.suffix.manifold = true;
           p.suffix.manifold_rate = ctx.snee.manifold_rate;
           p.suffix.boundary_curvature = m.manifold_curvature;
+          p.suffix.manifold_light_distance = light.distance;
         }
         propose(p, Strategy::kTopToBottom, s);
       }

@@ -200,6 +200,8 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
     if (only_boundary && shape.kind == ShapeKind::kSphere) {
       m.manifold_boundary = static_cast<int32_t>(i);
       m.manifold_curvature = 1.0f / shape.radius;
+      m.manifold_centre = shape.center;
+      m.manifold_radius = shape.radius;
       m.manifold_interior_clear = nothing_reaches_into(s, i);
       m.chain_search = chain_search_probability(m.medium.sigma_t, shape.radius);
     } else if (only_boundary && shape.kind == ShapeKind::kMesh && shape.closed &&

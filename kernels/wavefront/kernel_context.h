@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -97,6 +98,9 @@ struct MediumInfo {
   // The boundary's curvature as the manifold strategy's Jacobian takes it: 1 / radius for the
   // sphere, 0 for a mesh's flat facets.
   float manifold_curvature = 0.0f;
+  // A sphere boundary's centre and radius (zero for a mesh).
+  Vec3 manifold_centre{0.0f, 0.0f, 0.0f};
+  float manifold_radius = 0.0f;
   // A mesh boundary's exit trees, one per directional light of the scene; null for a sphere.
   // Built for snee only, the one integrator that runs the manifold strategy.
   std::shared_ptr<const std::vector<FacetExitTree>> manifold_mesh = nullptr;
@@ -119,11 +123,15 @@ struct MediumInfo {
     }
     return nullptr;
   }
-  // Whether the manifold strategy finds this medium's exit points for the directional light
-  // along `light`: a sphere boundary, or a mesh with a tree for that light. Both the strategy
+  // Whether the manifold strategy finds this medium's exit points for the delta light sampled
+  // at `at`: a directional light over a sphere boundary or a mesh with a tree for it, or a point
+  // or spot light outside a sphere boundary (sphere_exits_toward_point). Both the strategy
   // (connect_manifold) and top-to-bottom's view of it (subdivision) ask this.
-  bool manifold_solves_for(Vec3 light) const {
-    return manifold_boundary >= 0 && (!manifold_mesh || manifold_tree(light) != nullptr);
+  bool manifold_solves_for(const LightSample& light, Vec3 at) const {
+    if (manifold_boundary < 0 || !light.delta) return false;
+    if (std::isinf(light.distance)) return !manifold_mesh || manifold_tree(light.wi) != nullptr;
+    return !manifold_mesh &&
+           length(at + light.wi * light.distance - manifold_centre) > manifold_radius;
   }
 };
 

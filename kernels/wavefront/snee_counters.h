@@ -27,18 +27,19 @@ enum class SneeCounter : int {
   kScalarWeighings,         // TB/BT proposals whose float weighing left float's range
   kManifoldConnections,     // manifold-strategy connections queued (one per exit point found)
   kManifoldOccluded,        // manifold connections with a blocked segment
-  kManifoldNoExit,          // medium vertices under a directional light with no exit point
-  // Medium vertices under a directional light behind a smooth boundary the manifold strategy
-  // has no solver for (a smooth-shaded mesh, several shapes): their light through one
-  // refraction is not rendered.
+  kManifoldNoExit,          // medium vertices under a delta light with no exit point
+  // Medium vertices under a delta light behind a smooth boundary the manifold strategy has no
+  // solver for (a smooth-shaded mesh, several shapes; a point or spot light behind a mesh or
+  // inside the sphere): their light through one refraction is not rendered.
   kManifoldUnsupportedBoundary,
   // Manifold connections along chains of internal reflections (docs/method.md 3.12), one per
   // chain found, and chains found but not connected: beyond the solutions kept for one
   // reflection count, or the shadow segments one vertex may queue (both none in tests).
   kManifoldReflectionConnections,
   kManifoldReflectionDropped,
-  // Mesh boundaries (docs/method.md 3.13): medium vertices whose reflection-last light is not
-  // searched (chains are solved on spheres only); vertices that saw the light through more
+  // Medium vertices whose reflection-last light is not searched: behind a mesh (docs/method.md
+  // 3.13), or under a point or spot light (chains are solved on spheres, for a fixed light
+  // direction, only). Mesh boundaries: vertices that saw the light through more
   // facets than they connect, and connected a random run of them (unbiased); exit points beyond
   // what one query returns (none seen in tests), not connected.
   kManifoldChainsUnsupported,

@@ -53,6 +53,7 @@ void ProposalQueue::push(const SneeProposal& p, Strategy strategy, uint32_t slot
   q.manifold[i] = s.manifold ? 1u : 0u;
   q.manifold_rate[i] = s.manifold_rate;
   q.boundary_curvature[i] = s.boundary_curvature;
+  q.manifold_light_distance[i] = s.manifold_light_distance;
   store(p.emitted, i, q.emitted_r, q.emitted_g, q.emitted_b);
   q.sampling_pdf[i] = p.sampling_pdf;
   store_segment(p.segments[0], i, q.o0_x, q.o0_y, q.o0_z, q.d0_x, q.d0_y, q.d0_z, q.t0);
@@ -89,6 +90,7 @@ SneeProposal ProposalQueue::proposal(size_t i) const {
   s.manifold = q.manifold[i] != 0;
   s.manifold_rate = q.manifold_rate[i];
   s.boundary_curvature = q.boundary_curvature[i];
+  s.manifold_light_distance = q.manifold_light_distance[i];
   p.emitted = load(i, q.emitted_r, q.emitted_g, q.emitted_b);
   p.sampling_pdf = q.sampling_pdf[i];
   p.segments = segments(i);

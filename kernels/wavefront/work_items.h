@@ -96,10 +96,11 @@ SNEE_SOA_RECORD(TopToBottomLightLanes, SNEE_TOP_TO_BOTTOM_LIGHT_FIELDS);
 // proposal index: the slot and strategy; the suffix (kernels/physics/snee/snee_suffix.h: the
 // vertices x_i, x_j, x_k, the direction omega_in arriving at x_i, the normals n_k and ns_k at
 // x_k and the direction omega_o to the light; the medium and the interface; the light's pdf and
-// kind as 1 / 0; whether the manifold strategy shares it, with its rate and the boundary's
-// curvature); the light's radiance, the sampling density and the three shadow segments
-// (origin o, unit direction d and length t of each). A subdivision strategy's suffix always has
-// x_i and x_j as medium vertices and x_k as the probe's first hit, so those flags are not stored.
+// kind as 1 / 0; whether the manifold strategy shares it, with its rate, the boundary's
+// curvature and the distance to its point light); the light's radiance, the sampling density and
+// the three shadow segments (origin o, unit direction d and length t of each). A subdivision
+// strategy's suffix always has x_i and x_j as medium vertices and x_k as the probe's first hit, so
+// those flags are not stored.
 // clang-format off
 #define SNEE_PROPOSAL_SEGMENT(X, n) SNEE_SOA_VECTOR(X, o##n) SNEE_SOA_VECTOR(X, d##n) X(float, t##n)
 #define SNEE_PROPOSAL_FIELDS(X)                                                                 \
@@ -110,6 +111,7 @@ SNEE_SOA_RECORD(TopToBottomLightLanes, SNEE_TOP_TO_BOTTOM_LIGHT_FIELDS);
   X(float, g) X(float, eta) X(float, alpha)                                                     \
   X(float, light_pdf) X(float, light_delta) X(float, light_distant)                             \
   X(uint32_t, manifold) X(float, manifold_rate) X(float, boundary_curvature)                    \
+  X(float, manifold_light_distance)                                                             \
   X(float, emitted_r) X(float, emitted_g) X(float, emitted_b) X(double, sampling_pdf)           \
   SNEE_PROPOSAL_SEGMENT(X, 0) SNEE_PROPOSAL_SEGMENT(X, 1) SNEE_PROPOSAL_SEGMENT(X, 2)
 // clang-format on

@@ -150,68 +150,113 @@ LightPlane light_plane(Vec3 centre, float radius, Vec3 light, Vec3 x) {
   return plane;
 }
 
+// Keeps the exit at unit normal n (in the plane's units, where y = n) if the light arriving
+// there from outside along -toward_light refracts (relative index 1 / e) into a ray through p:
+// squaring the refraction condition admitted rays that pass through p backwards, or with the
+// other sign of the refracted cosine.
+void keep_exit(SphereExits& out, Vec3 centre, double r, double e, const Vec3d& n,
+               const Vec3d& toward_light, const Vec3d& p) {
+  const double c = dot(n, toward_light);
+  const double k2 = 1.0 - e * e * (1.0 - c * c);
+  if (!(c > 0) || !(k2 > 0)) return;
+  const double k = std::sqrt(k2);
+  const Vec3d omega_r = -e * toward_light + (e * c - k) * n;
+  const Vec3d to_x = p - n;
+  const double t = length(to_x);
+  if (!(t > 0) || !(dot(to_x / t, omega_r) > 1.0 - 1e-9)) return;
+  SphereExit& s = out.exit[static_cast<size_t>(out.count++)];
+  s.n = Vec3(n);
+  s.y = Vec3(Vec3d(centre) + r * n);
+  s.omega_r = Vec3(normalize(omega_r));
+  s.t = t * r;
+}
+
+// The polynomials in u = tan(phi / 2) that both solvers square their conditions into:
+// c = C / D, s = S / D.
+const Poly kD = poly({1, 0, 1}), kC = poly({1, 0, -1}), kS = poly({0, 2});
+
 }  // namespace
 
 SphereExits sphere_exits_toward_light(Vec3 centre, float radius, float eta, Vec3 light, Vec3 x) {
   SphereExits out;
-  const double e = 1.0 / eta, r = radius;
+  const double e = 1.0 / eta;
   const LightPlane plane = light_plane(centre, radius, light, x);
   if (!plane.valid) return out;
-  const Vec3d &a = plane.a, &b = plane.b;
   const double p_a = plane.p_a, p_b = plane.p_b;
-  const Vec3d& p = plane.p;
   // In the plane (a, b) through the centre, n = (cos phi, sin phi) with phi in (-pi/2, pi/2)
   // (facing the light). The refracted direction is -e a + (e c - k) n with c = cos phi,
   // s = sin phi, k = sqrt(1 - e^2 s^2); it passes through p when
   //   (e c - k) A + e (p_b - s) = 0,  A = p_a s - p_b c  (the 2D cross product).
-  // Isolating k and squaring, then u = tan(phi / 2), c = (1 - u^2) / D, s = 2u / D, D = 1 + u^2,
-  // and multiplying by D^4:
-  //   (D^2 - e^2 S^2) (A D)^2 - e^2 (C (A D) + p_b D^2 - S D)^2 = 0,  C = 1 - u^2, S = 2u.
-  const Poly D = poly({1, 0, 1}), C = poly({1, 0, -1}), S = poly({0, 2});
-  const Poly AD = add(scale(S, p_a), scale(C, p_b), -1.0);
-  const Poly D2 = mul(D, D);
-  const Poly left = mul(add(D2, scale(mul(S, S), e * e), -1.0), mul(AD, AD));
-  const Poly inner = add(add(mul(C, AD), scale(D2, p_b)), mul(S, D), -1.0);
+  // Isolating k and squaring, then u = tan(phi / 2), D = 1 + u^2, C = 1 - u^2, S = 2u, and
+  // multiplying by D^4:
+  //   (D^2 - e^2 S^2) (A D)^2 - e^2 (C (A D) + p_b D^2 - S D)^2 = 0.
+  const Poly AD = add(scale(kS, p_a), scale(kC, p_b), -1.0);
+  const Poly D2 = mul(kD, kD);
+  const Poly left = mul(add(D2, scale(mul(kS, kS), e * e), -1.0), mul(AD, AD));
+  const Poly inner = add(add(mul(kC, AD), scale(D2, p_b)), mul(kS, kD), -1.0);
   const Poly P = add(left, scale(mul(inner, inner), e * e), -1.0);
   const Roots roots = real_roots(P, -1.0, 1.0);
   for (int i = 0; i < roots.count; ++i) {
     const double phi = 2.0 * std::atan(roots.u[i]);
-    const Vec3d n = std::cos(phi) * a + std::sin(phi) * b;
-    const double c = dot(n, a);
-    const double k2 = 1.0 - e * e * (1.0 - c * c);
-    if (!(c > 0) || !(k2 > 0)) continue;
-    const double k = std::sqrt(k2);
-    const Vec3d omega_r = -e * a + (e * c - k) * n;
-    const Vec3d to_x = p - n;
-    const double t = length(to_x);
-    if (!(t > 0)) continue;
-    // Squaring admitted the rays that pass through p backwards or with the other sign of k.
-    if (!(dot(to_x / t, omega_r) > 1.0 - 1e-9)) continue;
-    SphereExit& s = out.exit[static_cast<size_t>(out.count++)];
-    s.n = Vec3(n);
-    s.y = Vec3(Vec3d(centre) + r * n);
-    s.omega_r = Vec3(normalize(omega_r));
-    s.t = t * r;
+    keep_exit(out, centre, radius, e, std::cos(phi) * plane.a + std::sin(phi) * plane.b, plane.a,
+              plane.p);
   }
   return out;
 }
 
-double refraction_volume_jacobian(Vec3 n_in, Vec3 light, float eta, double curvature, double t) {
+SphereExits sphere_exits_toward_point(Vec3 centre, float radius, float eta, Vec3 light_position,
+                                      Vec3 x) {
+  SphereExits out;
+  const double e = 1.0 / eta;
+  const Vec3d to_light = (Vec3d(light_position) - Vec3d(centre)) / static_cast<double>(radius);
+  const double l = length(to_light);
+  if (!(l > 1.0)) return out;
+  const LightPlane plane = light_plane(centre, radius, Vec3(to_light / l), x);
+  if (!plane.valid) return out;
+  const double p_a = plane.p_a, p_b = plane.p_b;
+  // The light sits at l a. With n = (cos phi, sin phi) and tangent (-s, c), the refraction
+  // keeps the tangential component of the unit direction times e: toward p, -A / |p - n|;
+  // arriving from the light, l s / |n - l a|. So
+  //   A |n - l a| = -e l s |p - n|,  A = p_a s - p_b c,
+  // and squared, with |n - l a|^2 = 1 + l^2 - 2 l c and |p - n|^2 = |p|^2 + 1 - 2 (p_a c + p_b s),
+  // times D^3:
+  //   (A D)^2 ((1 + l^2) D - 2 l C) - e^2 l^2 S^2 ((|p|^2 + 1) D - 2 (p_a C + p_b S)) = 0,
+  // of degree 6. Facing the light needs l c > 1, so |phi| < pi / 2 and u in (-1, 1).
+  const Poly AD = add(scale(kS, p_a), scale(kC, p_b), -1.0);
+  const Poly to_light2 = add(scale(kD, 1.0 + l * l), scale(kC, 2.0 * l), -1.0);
+  const Poly to_x2 = add(scale(kD, dot(plane.p, plane.p) + 1.0),
+                         add(scale(kC, 2.0 * p_a), scale(kS, 2.0 * p_b)), -1.0);
+  const Poly P =
+      add(mul(mul(AD, AD), to_light2), scale(mul(mul(kS, kS), to_x2), e * e * l * l), -1.0);
+  const Roots roots = real_roots(P, -1.0, 1.0);
+  for (int i = 0; i < roots.count; ++i) {
+    const double phi = 2.0 * std::atan(roots.u[i]);
+    const Vec3d n = std::cos(phi) * plane.a + std::sin(phi) * plane.b;
+    keep_exit(out, centre, radius, e, n, normalize(l * plane.a - n), plane.p);
+  }
+  return out;
+}
+
+double refraction_volume_jacobian(Vec3 n_in, Vec3 light, float eta, double curvature, double t,
+                                  double light_distance) {
   const Vec3d n = normalize(Vec3d(n_in)), w = normalize(Vec3d(light));
   const double e = 1.0 / eta, c = dot(n, w);
   const double k2 = 1.0 - e * e * (1.0 - c * c);
   if (!(c > 0) || !(k2 > 0)) return 0.0;
   const double k = std::sqrt(k2);
   const Vec3d omega_r = -e * w + (e * c - k) * n;
-  // Moving y along a unit tangent v turns n by curvature * v, so c by curvature (v . w), and
-  // omega_r by d(e c - k) n + (e c - k) dn with dk = e^2 c dc / k.
+  // Moving y along a unit tangent v turns n by curvature * v and, for a light at a finite
+  // distance d, the direction toward it by -(v - (v . w) w) / d; so c by dn . w + n . dw, and
+  // omega_r by -e dw + (e dc - dk) n + (e c - k) dn with dk = e^2 c dc / k.
+  const double inverse_distance = std::isinf(light_distance) ? 0.0 : 1.0 / light_distance;
   const Vec3d v1 =
       normalize(std::abs(n.x) < 0.9 ? cross(n, Vec3d(1, 0, 0)) : cross(n, Vec3d(0, 1, 0)));
   const Vec3d v2 = cross(n, v1);
   const auto dx = [&](const Vec3d& v) {
     const Vec3d dn = curvature * v;
-    const double dc = dot(dn, w);
-    const Vec3d d_omega = (e * dc * (1.0 - e * c / k)) * n + (e * c - k) * dn;
+    const Vec3d dw = -inverse_distance * (v - dot(v, w) * w);
+    const double dc = dot(dn, w) + dot(n, dw);
+    const Vec3d d_omega = -e * dw + (e * dc * (1.0 - e * c / k)) * n + (e * c - k) * dn;
     return v + t * d_omega;
   };
   return std::abs(dot(cross(dx(v1), dx(v2)), omega_r));

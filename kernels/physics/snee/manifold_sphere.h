@@ -35,11 +35,22 @@ struct SphereExits {
 // centre along the light (a set of zero volume, where the solutions form a ring).
 SphereExits sphere_exits_toward_light(Vec3 centre, float radius, float eta, Vec3 light, Vec3 x);
 
-// |dV(x) / (dA(y) dt)| for x = y + t omega_r(y), with omega_r the refraction of the fixed light
-// direction through the normal n(y) of a surface whose normal turns by `curvature` per unit
-// length in every tangent direction (1 / radius for a sphere, 0 for a flat triangle, where it
-// is the cosine |n . omega_r|). Zero on the caustic.
-double refraction_volume_jacobian(Vec3 n, Vec3 light, float eta, double curvature, double t);
+// The same for a point (or spot) light at light_position, outside the sphere: every y that sees
+// the light and refracts the ray arriving from it into a ray through x. The sphere's normal at
+// y passes through the centre, so the solutions lie in the plane of the centre, the light and
+// x, where the squared condition is a polynomial of degree 6 (docs/method.md 3.10). None when
+// the light is not outside or x lies on the axis through the centre and the light.
+SphereExits sphere_exits_toward_point(Vec3 centre, float radius, float eta, Vec3 light_position,
+                                      Vec3 x);
+
+// |dV(x) / (dA(y) dt)| for x = y + t omega_r(y), with omega_r the refraction, through the normal
+// n(y) of a surface whose normal turns by `curvature` per unit length in every tangent direction
+// (1 / radius for a sphere, 0 for a flat triangle), of the light arriving along -light: from a
+// fixed direction (light_distance infinite), where on a flat triangle it is the cosine
+// |n . omega_r|, or from a point at light_distance from y, whose direction turns as y moves.
+// Zero on the caustic.
+double refraction_volume_jacobian(Vec3 n, Vec3 light, float eta, double curvature, double t,
+                                  double light_distance = kInfinity);
 
 // Internal reflections a chain of the manifold strategy may have (docs/method.md 3.12), and the
 // most solutions kept for one reflection count (more are counted as dropped; none seen in tests).

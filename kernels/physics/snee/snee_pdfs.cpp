@@ -27,13 +27,13 @@ SuffixLanes<double> in_double(const SneeSuffix& s) {
 // takes the light (selection probability) and every exit point, so x_j's volume density becomes
 // dA dt by the refraction volume Jacobian (docs/method.md 3.10). Zero wherever it does not run.
 double manifold_exit_pdf(const SneeSuffix& s, const SuffixWeighing<double>& w) {
-  if (!s.manifold || !s.x_j_medium || !s.light_delta || !s.light_distant || !s.interface.delta() ||
-      !(w.r_jk > 0) || !w.crosses) {
+  if (!s.manifold || !s.x_j_medium || !s.light_delta || !s.interface.delta() || !(w.r_jk > 0) ||
+      !w.crosses) {
     return 0.0;
   }
   return s.manifold_rate * s.light_pdf *
-         refraction_volume_jacobian(s.n_k, s.omega_o, s.interface.eta, s.boundary_curvature,
-                                    w.r_jk);
+         refraction_volume_jacobian(s.n_k, s.omega_o, s.interface.eta, s.boundary_curvature, w.r_jk,
+                                    s.manifold_light_distance);
 }
 
 // The manifold strategy from x_j's walk step on, for suffixes whose x_i is a medium vertex.

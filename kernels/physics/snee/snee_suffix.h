@@ -40,7 +40,9 @@ struct SneeSuffix {
   bool x_i_medium = false;
   bool x_j_medium = false;
   // Whether the manifold strategy (docs/method.md 3.10) runs at x_j for this suffix: a smooth
-  // sphere boundary, a directional light, and x_j within the walk's depth limit. It finds every
+  // boundary it solves (a sphere, or a closed flat-shaded mesh under a directional light), a
+  // directional light or a point or spot light outside the sphere, and x_j within the walk's
+  // depth limit. It finds every
   // exit point, so then it can produce the suffix whenever x_j is a medium vertex.
   bool manifold = false;
   // The probability that it runs at x_j (SneeOptions::manifold_rate when x_i is a medium vertex,
@@ -48,6 +50,9 @@ struct SneeSuffix {
   float manifold_rate = 1;
   // How fast the outward normal turns per unit length along the boundary at x_k (1 / radius).
   float boundary_curvature = 0;
+  // The distance from x_k to the point or spot light the manifold strategy solved for; infinite
+  // for a directional light. Its density's Jacobian depends on it.
+  float manifold_light_distance = kInfinity;
 };
 
 // Whether the probe-based strategies (TB, BT) can produce the suffix at all.
