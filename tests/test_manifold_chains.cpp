@@ -29,57 +29,6 @@ Vec3 lit_normal(TestRng& rng, Vec3 light) {
   return dot(n, light) < 0 ? -n : n;
 }
 
-// The light's path inside from the entry normal n, traced in double so that its end points lie
-// on the exact chain to float's rounding: the entry and each reflection point (the last one the
-// start of the final chord), the final direction and the final chord's length.
-struct ForwardChain {
-  std::vector<Vec3> points;
-  Vec3 direction;
-  float chord = 0;
-  Vec3 at(double t) const {
-    return Vec3(end[0] + t * dir[0], end[1] + t * dir[1], end[2] + t * dir[2]);
-  }
-  double end[3] = {0, 0, 0}, dir[3] = {0, 0, 0};
-};
-ForwardChain trace_forward(Vec3 light, Vec3 n_in, int reflections) {
-  using V = std::array<double, 3>;
-  const auto dotd = [](const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-  const auto norm = [&](V a) {
-    const double l = std::sqrt(dotd(a, a));
-    return V{a[0] / l, a[1] / l, a[2] / l};
-  };
-  const V w = norm({light.x, light.y, light.z});
-  const V n = norm({n_in.x, n_in.y, n_in.z});
-  const double e = 1.0 / kEta, c = dotd(n, w), k = std::sqrt(1 - e * e * (1 - c * c));
-  V d{-e * w[0] + (e * c - k) * n[0], -e * w[1] + (e * c - k) * n[1],
-      -e * w[2] + (e * c - k) * n[2]};
-  V q = n;  // on the unit sphere
-  const auto world = [&](const V& u) {
-    return Vec3(static_cast<float>(kCentre.x + kRadius * u[0]),
-                static_cast<float>(kCentre.y + kRadius * u[1]),
-                static_cast<float>(kCentre.z + kRadius * u[2]));
-  };
-  ForwardChain f;
-  f.points.push_back(world(q));
-  for (int i = 0; i < reflections; ++i) {
-    const double t = -2 * dotd(q, d);
-    q = {q[0] + t * d[0], q[1] + t * d[1], q[2] + t * d[2]};
-    const double r = 2 * dotd(d, q);
-    d = {d[0] - r * q[0], d[1] - r * q[1], d[2] - r * q[2]};
-    f.points.push_back(world(q));
-  }
-  f.direction = Vec3(static_cast<float>(d[0]), static_cast<float>(d[1]), static_cast<float>(d[2]));
-  f.chord = static_cast<float>(-2 * kRadius * dotd(q, d));
-  for (int i = 0; i < 3; ++i) {
-    f.end[i] = (i == 0   ? kCentre.x
-                : i == 1 ? kCentre.y
-                         : kCentre.z) +
-               kRadius * q[static_cast<size_t>(i)];
-    f.dir[i] = d[static_cast<size_t>(i)];
-  }
-  return f;
-}
-
 TEST(ManifoldChains, ChainsObeySnellAndTheMirrorLaw) {
   TestRng rng(11);
   int chains = 0;
@@ -164,20 +113,11 @@ TEST(ManifoldChains, FindsEveryForwardTracedPath) {
   EXPECT_LT(near_caustic_misses, kSamples / 1000);
 }
 
-// Central differences of x(u, v, t) = last point + t * last direction, (u, v) arc lengths on the
-// sphere around the entry point.
+// The chain's volume Jacobian by central differences at distance t along its last chord.
 double numerical_chain_jacobian(Vec3 n0, Vec3 light, int reflections, double t) {
-  const Frame frame = Frame::from_normal(n0);
-  const auto x_of = [&](double u, double v) {
-    const Vec3 n = normalize(n0 + frame.to_world(Vec3(static_cast<float>(u / kRadius),
-                                                      static_cast<float>(v / kRadius), 0)));
-    const ForwardChain f = trace_forward(light, n, reflections);
-    return f.at(t);
-  };
-  const double h = 1e-3;
-  const Vec3 du = (x_of(h, 0) - x_of(-h, 0)) / static_cast<float>(2 * h);
-  const Vec3 dv = (x_of(0, h) - x_of(0, -h)) / static_cast<float>(2 * h);
-  return std::abs(dot(cross(du, dv), trace_forward(light, n0, reflections).direction));
+  return numerical_volume_jacobian(
+      n0, trace_forward(light, n0, reflections).direction,
+      [&](Vec3 n) { return trace_forward(light, n, reflections).at(t); });
 }
 
 TEST(ManifoldChains, JacobianMatchesFiniteDifferencesAndTheRefractionJacobian) {

@@ -53,19 +53,11 @@ TEST(ManifoldSphere, SolutionsObeySnellsLaw) {
 // found again) is tested with the reflection chains', as their case of no reflection:
 // ManifoldChains.FindsEveryForwardTracedPath in tests/test_manifold_chains.cpp.
 
-// |det(dx/du, dx/dv, dx/dt)| for x = y(u, v) + t omega_r(y(u, v)), with (u, v) arc lengths on the
-// sphere around y, by central differences.
+// The refraction's volume Jacobian by central differences at distance t along the refracted ray.
 double numerical_jacobian(Vec3 n0, Vec3 light, double t) {
-  const Frame f = Frame::from_normal(n0);
-  const auto x_of = [&](double u, double v) {
-    const Vec3 n = normalize(
-        n0 + f.to_world(Vec3(static_cast<float>(u / kRadius), static_cast<float>(v / kRadius), 0)));
+  return numerical_volume_jacobian(n0, refracted_light(light, n0), [&](Vec3 n) {
     return kCentre + n * kRadius + refracted_light(light, n) * static_cast<float>(t);
-  };
-  const double h = 1e-3;
-  const Vec3 du = (x_of(h, 0) - x_of(-h, 0)) / static_cast<float>(2 * h);
-  const Vec3 dv = (x_of(0, h) - x_of(0, -h)) / static_cast<float>(2 * h);
-  return std::abs(dot(cross(du, dv), refracted_light(light, n0)));
+  });
 }
 
 TEST(ManifoldSphere, JacobianMatchesFiniteDifferences) {

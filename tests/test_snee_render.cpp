@@ -306,26 +306,28 @@ std::vector<bool> sphere_mask_without_glint(const Scene& scene) {
 
 // The delta-delta limit, single scattering alone: the camera ray enters (depth 1), scatters once
 // (2) and leaves toward the light (3). With --max-depth 3 and the manifold strategy alone that is
-// all snee renders under the directional light; pt renders the same class under a cone of the
-// same irradiance (away from the cone's glint), where only its BSDF-sampled exit can find the
-// light, by chance. At 2 degrees pt's image at a test's sample count is a few lucky samples, so
-// the cone is 8 degrees, whose difference from the limit (measured: 0.0273 +- 0.00015 for snee,
-// 0.0299 +- 0.0013 for pt at 4096 spp) is below what the test resolves. Compared over `object`;
-// pt's standard error must be below `pt_relative_error` of the mean for the comparison to mean
-// something.
-void expect_single_scattering_limit(const Scene& directional, const std::vector<bool>& object,
-                                    int snee_spp, int pt_spp, uint32_t seed,
-                                    double pt_relative_error) {
-  const Scene cone = cone_of_same_irradiance(directional, 8.0f);
+// all snee renders under a delta light; pt renders the same class under a small light of the
+// same irradiance (`reference`, away from its glints), where only its BSDF-sampled exit can find
+// the light, by chance. For a directional light, at 2 degrees pt's image at a test's sample
+// count is a few lucky samples, so the cone is 8 degrees, whose difference from the limit
+// (measured: 0.0273 +- 0.00015 for snee, 0.0299 +- 0.0013 for pt at 4096 spp) is below what the
+// test resolves. Compared over `object`; pt's standard error must be below `pt_relative_error`
+// of the mean for the comparison to mean something.
+void expect_single_scattering_limit(const Scene& delta, const Scene& reference,
+                                    const std::vector<bool>& object, int snee_spp, int pt_spp,
+                                    uint32_t seed, double pt_relative_error) {
   const test::RegionStats single = test::region_mean(
-      render_with(directional, "snee", snee_spp, seed, StrategySet::only(Strategy::kManifold), 3),
+      render_with(delta, "snee", snee_spp, seed, StrategySet::only(Strategy::kManifold), 3),
       object);
-  const test::RegionStats pt =
-      test::region_mean(render_with(cone, "pt", pt_spp, seed + 2, StrategySet::all(), 3), object);
+  const test::RegionStats pt = test::region_mean(
+      render_with(reference, "pt", pt_spp, seed + 2, StrategySet::all(), 3), object);
+  std::cout << "single scattering: snee " << single.mean << " +- " << single.standard_error
+            << ", pt under the small light " << pt.mean << " +- " << pt.standard_error << " over "
+            << pt.pixels << " pixels\n";
   ASSERT_GT(single.mean, 20 * single.standard_error) << "a black image proves nothing";
   EXPECT_LT(test::z_score(single.mean, single.standard_error, pt.mean, pt.standard_error), 4.0)
       << "snee single scattering " << single.mean << " +- " << single.standard_error
-      << ", pt under the cone " << pt.mean << " +- " << pt.standard_error;
+      << ", pt under the small light " << pt.mean << " +- " << pt.standard_error;
   EXPECT_LT(pt.standard_error, pt_relative_error * single.mean)
       << single.mean << " +- " << single.standard_error << " vs " << pt.mean << " +- "
       << pt.standard_error << " over " << pt.pixels << " pixels";
@@ -333,8 +335,8 @@ void expect_single_scattering_limit(const Scene& directional, const std::vector<
 
 TEST(SneeManifold, SingleScatteringMatchesAConeOfTheSameIrradiance) {
   const Scene directional = grid_scene("sphere-directional-smooth");
-  expect_single_scattering_limit(directional, sphere_mask_without_glint(directional), 64, 4096, 801,
-                                 0.1);
+  expect_single_scattering_limit(directional, cone_of_same_irradiance(directional, 8.0f),
+                                 sphere_mask_without_glint(directional), 64, 4096, 801, 0.1);
 }
 
 // A clear, high-index sphere under the directional light: its internal reflections are strong
@@ -380,30 +382,33 @@ std::vector<bool> mask_without_glints(const Scene& cone, int max_depth,
   return mask;
 }
 
-// The delta-delta limit with the internal reflections, at one depth limit: snee under the
-// directional light (the manifold strategy's chains take the light reflected inside before it
-// reaches a scattering point, which nothing else can sample) against pt under an 8-degree cone
-// of the same irradiance, away from the glints. Without the chains snee must miss a share the
+// The delta-delta limit with the internal reflections, at one depth limit: snee under a delta
+// light (the manifold strategy's chains take the light reflected inside before it reaches a
+// scattering point, which nothing else can sample) against pt under a small light of the same
+// irradiance (`reference`), away from the glints. Without the chains snee must miss a share the
 // test resolves (the same seed: the images differ only by the chains' light), or the agreement
 // would prove nothing about them.
-void expect_chains_close_the_limit(int depth, int snee_spp, int pt_spp, uint32_t seed) {
-  const Scene directional = clear_sphere(0.3f);
-  const Scene cone = cone_of_same_irradiance(directional, 8.0f);
-  const std::vector<bool> object = mask_without_glints(cone, depth);
+void expect_chains_close_the_limit(const Scene& delta, const Scene& reference, int depth,
+                                   int snee_spp, int pt_spp, uint32_t seed) {
+  const std::vector<bool> object = mask_without_glints(reference, depth);
   RenderOptions options;
   options.max_depth = depth;
   options.integrator = "snee";
   options.snee.light_limit_degrees = 180;
   options.spp = snee_spp;
   options.seed = seed;
-  const test::RegionStats snee = test::region_mean(render(directional, options).film, object);
+  const test::RegionStats snee = test::region_mean(render(delta, options).film, object);
   options.snee.reflection_chains = false;
-  const test::RegionStats without = test::region_mean(render(directional, options).film, object);
+  const test::RegionStats without = test::region_mean(render(delta, options).film, object);
   const test::RegionStats pt = test::region_mean(
-      render_with(cone, "pt", pt_spp, seed + 1, StrategySet::all(), depth), object);
+      render_with(reference, "pt", pt_spp, seed + 1, StrategySet::all(), depth), object);
+  std::cout << "depth " << depth << ": snee " << snee.mean << " +- " << snee.standard_error
+            << ", without the chains " << without.mean << " +- " << without.standard_error
+            << ", pt " << pt.mean << " +- " << pt.standard_error << " over " << pt.pixels
+            << " pixels\n";
   ASSERT_GT(snee.pixels, 150);
   EXPECT_LT(test::z_score(snee.mean, snee.standard_error, pt.mean, pt.standard_error), 4.0)
-      << "depth " << depth << ": snee under the directional light " << snee.mean << " +- "
+      << "depth " << depth << ": snee under the delta light " << snee.mean << " +- "
       << snee.standard_error << ", pt under the cone " << pt.mean << " +- " << pt.standard_error;
   EXPECT_GT(test::z_score(without.mean, without.standard_error, pt.mean, pt.standard_error), 5.0)
       << "depth " << depth << ": without the chains " << without.mean << " +- "
@@ -415,13 +420,17 @@ void expect_chains_close_the_limit(int depth, int snee_spp, int pt_spp, uint32_t
 // once inside before or after the scattering, or scatters twice (4). Measured (4096 / 65536 spp):
 // snee 0.0301 +- 0.0001, without chains 0.0276, pt 0.0307 +- 0.0004.
 TEST(SneeManifold, ReflectionChainsCloseTheDeltaDeltaLimitAtDepthFour) {
-  expect_chains_close_the_limit(4, 2048, 32768, 911);
+  const Scene directional = clear_sphere(0.3f);
+  expect_chains_close_the_limit(directional, cone_of_same_irradiance(directional, 8.0f), 4, 2048,
+                                32768, 911);
 }
 
 // Every depth (measured at 2048 / 32768 spp: snee 0.0755 +- 0.0008, without chains 0.0663, pt
 // 0.0756 +- 0.0007).
 TEST(SneeManifold, ReflectionChainsCloseTheDeltaDeltaLimit) {
-  expect_chains_close_the_limit(1024, 1024, 16384, 921);
+  const Scene directional = clear_sphere(0.3f);
+  expect_chains_close_the_limit(directional, cone_of_same_irradiance(directional, 8.0f), 1024, 1024,
+                                16384, 921);
 }
 
 // The delta-delta limit on a closed flat-shaded mesh (docs/method.md 3.13): single scattering
@@ -436,7 +445,8 @@ TEST(SneeManifold, MeshSingleScatteringMatchesAConeOfTheSameIrradiance) {
   const std::vector<bool> object = mask_without_glints(
       cone_of_same_irradiance(directional, 8.0f), 3,
       std::vector<bool>(directional.camera.width * directional.camera.height, true));
-  expect_single_scattering_limit(directional, object, 256, 16384, 811, 0.05);
+  expect_single_scattering_limit(directional, cone_of_same_irradiance(directional, 8.0f), object,
+                                 256, 16384, 811, 0.05);
 }
 
 // A point light where the directional light was, at `distance` from the sphere's centre, with
@@ -478,21 +488,24 @@ Scene sphere_light_instead(const Scene& point, float radius) {
   return scene;
 }
 
-// docs/method.md 3.10 for a point and a spot light behind the smooth sphere: the manifold
-// strategy solves for the exit points of the light's own rays (sphere_exits_toward_point) and
-// shares the suffixes x_i (medium) -> x_j -> exit -> light with top-to-bottom; each alone must
-// give the image of both. For the spot both must take its intensity toward the exit point, not
-// toward x_j.
+// docs/method.md 3.10 and 3.13 for a point and a spot light behind the smooth sphere and the
+// flat-shaded bunny: the manifold strategy solves for the exit points of the light's own rays
+// (sphere_exits_toward_point, PointFacetTree) and shares the suffixes x_i (medium) -> x_j ->
+// exit -> light with top-to-bottom; each alone must give the image of both. For the spot both
+// must take its intensity toward the exit point, not toward x_j.
 TEST(SneeManifold, PointAndSpotLightsEachStrategyAloneMatchesBoth) {
-  for (const bool spot : {false, true}) {
-    const Scene scene = point_light_instead(grid_scene("sphere-directional-smooth"), spot);
-    const std::string name = spot ? "spot" : "point";
-    const Film both = render_with(scene, "snee", 64, 731);
-    const Film tb = render_with(scene, "snee", 64, 732, StrategySet::only(Strategy::kTopToBottom));
-    const Film mn = render_with(scene, "snee", 64, 733, StrategySet::only(Strategy::kManifold));
-    ASSERT_GT(test::region_mean(both, test::sphere_mask(scene)).mean, 0.01) << name;
-    EXPECT_GE(expect_same_image(both, tb, name + ": top-to-bottom alone"), 4);
-    EXPECT_GE(expect_same_image(both, mn, name + ": manifold alone"), 4);
+  for (const std::string object : {"sphere", "bunny"}) {
+    for (const bool spot : {false, true}) {
+      const Scene scene = point_light_instead(grid_scene(object + "-directional-smooth"), spot);
+      const std::string name = object + (spot ? ", spot" : ", point");
+      const Film both = render_with(scene, "snee", 64, 731);
+      const Film tb =
+          render_with(scene, "snee", 64, 732, StrategySet::only(Strategy::kTopToBottom));
+      const Film mn = render_with(scene, "snee", 64, 733, StrategySet::only(Strategy::kManifold));
+      ASSERT_GT(test::region_mean(both, test::sphere_mask(scene)).mean, 0.005) << name;
+      EXPECT_GE(expect_same_image(both, tb, name + ": top-to-bottom alone"), 4);
+      EXPECT_GE(expect_same_image(both, mn, name + ": manifold alone"), 4);
+    }
   }
 }
 
@@ -502,17 +515,24 @@ TEST(SneeManifold, PointAndSpotLightsEachStrategyAloneMatchesBoth) {
 TEST(SneeManifold, PointLightSingleScatteringMatchesASmallSphereLight) {
   const Scene point = point_light_instead(grid_scene("sphere-directional-smooth"), false);
   const Scene bulb = sphere_light_instead(point, 0.3f);
-  const std::vector<bool> object = mask_without_glints(bulb, 3);
-  const test::RegionStats single = test::region_mean(
-      render_with(point, "snee", 64, 741, StrategySet::only(Strategy::kManifold), 3), object);
-  const test::RegionStats pt =
-      test::region_mean(render_with(bulb, "pt", 16384, 742, StrategySet::all(), 3), object);
-  std::cout << "point light, single scattering: snee " << single.mean << " +- "
-            << single.standard_error << ", pt under the sphere light " << pt.mean << " +- "
-            << pt.standard_error << " over " << pt.pixels << " pixels\n";
-  ASSERT_GT(single.mean, 20 * single.standard_error) << "a black image proves nothing";
-  EXPECT_LT(test::z_score(single.mean, single.standard_error, pt.mean, pt.standard_error), 4.0);
-  EXPECT_LT(pt.standard_error, 0.1 * single.mean);
+  expect_single_scattering_limit(point, bulb, mask_without_glints(bulb, 3), 64, 16384, 741, 0.1);
+}
+
+// The same on the flat-shaded bunny (PointFacetTree), over the whole image away from the glints.
+TEST(SneeManifold, PointLightMeshSingleScatteringMatchesASmallSphereLight) {
+  const Scene point = point_light_instead(grid_scene("bunny-directional-smooth"), false);
+  const Scene bulb = sphere_light_instead(point, 0.3f);
+  const std::vector<bool> object = mask_without_glints(
+      bulb, 3, std::vector<bool>(point.camera.width * point.camera.height, true));
+  expect_single_scattering_limit(point, bulb, object, 256, 16384, 761, 0.05);
+}
+
+// The delta-delta limit with the internal reflections under a point light, at every depth: snee
+// under the point light against pt under a sphere light of radius 0.3 and the same intensity in
+// its place, on the clear high-index sphere.
+TEST(SneeManifold, PointLightReflectionChainsCloseTheDeltaDeltaLimit) {
+  const Scene point = point_light_instead(clear_sphere(0.3f), false);
+  expect_chains_close_the_limit(point, sphere_light_instead(point, 0.3f), 1024, 1024, 16384, 751);
 }
 
 }  // namespace

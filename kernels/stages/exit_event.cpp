@@ -151,19 +151,27 @@ namespace {
 // these paths under a delta light, so each counts with weight 1, over the probability of having
 // searched its reflection count (`u`) at a vertex where the strategy ran (`rate`). The walk
 // would have spent one depth per reflection and one for the exit, so chains stop where the path
-// tracer's depth limit would.
+// tracer's depth limit would. `light` is the light as sampled at x_j, `light_at(y)` as seen from
+// an entry point y (the same light; a point light's direction and irradiance there).
+template <typename LightAt>
 void connect_reflection_chains(const KernelContext& ctx, const PathState& state, uint32_t slot,
                                const MediumInfo& m, const Shape& sphere,
-                               const DielectricParams& interface, const LightSample& light, float u,
-                               float rate, ShadowQueue& shadow, KernelCounters& counters) {
+                               const DielectricParams& interface, const LightSample& light,
+                               const LightAt& light_at, float u, float rate, ShadowQueue& shadow,
+                               KernelCounters& counters) {
   const ChainChoice choice = choose_chain_reflections(u, m.chain_search);
   const int depth_left = ctx.max_depth - static_cast<int>(state.depth[slot]) - 1;
   if (choice.reflections < 1 || choice.reflections > std::min(depth_left, kMaxChainReflections)) {
     return;
   }
   const Vec3 x_j = state.vertex_j(slot);
-  const SphereChains chains = sphere_reflection_chains_toward_light(
-      sphere.center, sphere.radius, interface.eta, light.wi, x_j, choice.reflections);
+  const SphereChains chains =
+      std::isinf(light.distance)
+          ? sphere_reflection_chains_toward_light(sphere.center, sphere.radius, interface.eta,
+                                                  light.wi, x_j, choice.reflections)
+          : sphere_reflection_chains_toward_point(sphere.center, sphere.radius, interface.eta,
+                                                  x_j + light.wi * light.distance, x_j,
+                                                  choice.reflections);
   counters.count(SneeCounter::kManifoldReflectionDropped, static_cast<uint64_t>(chains.dropped));
   const Vec3 w_before = state.direction_in_j(slot);
   const Rgb beta = state.throughput(slot);
@@ -176,8 +184,9 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
       counters.count(SneeCounter::kManifoldReflectionDropped);
       continue;
     }
-    const double cos_l = dot(chain.n, light.wi);
-    if (!(cos_l > 0)) continue;
+    const LightSample at_y = light_at(chain.y);
+    const double cos_l = dot(chain.n, at_y.wi);
+    if (!(at_y.pdf > 0) || !(cos_l > 0)) continue;
     // Every reflection meets the boundary at the refracted angle of the entry, so each
     // reflects the entry's Fresnel reflectance F_r (the same from both sides of the pair).
     const double reflectance = fresnel_dielectric(static_cast<float>(cos_l), interface.eta);
@@ -187,12 +196,14 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
     // The chain bends at its reflections; in a homogeneous medium (the manifold strategy's
     // premise) its transmittance is that of its total length.
     const Rgb unweighted =
-        beta * light.radiance *
+        beta * at_y.radiance *
         m.medium.transmittance(x_j, -chain.omega_last, static_cast<float>(chain.length)) *
         static_cast<float>(scale);
     if (is_black(unweighted) || !is_finite(unweighted)) continue;
+    const Vec3 outer = chain.y + ctx.epsilon * chain.n;
+    const ShadowRay to_light = shadow_ray_to_light(at_y, chain.y, outer);
     const uint32_t first =
-        shadow.add_segment(chain.y + ctx.epsilon * chain.n, light.wi, kInfinity, kVisibilityOnly);
+        shadow.add_segment(outer, to_light.direction, to_light.t_max, kVisibilityOnly);
     uint32_t segments = 1;
     if (!m.manifold_interior_clear) {
       // Something reaches into the sphere: every chord can be blocked. From x_j back along the
@@ -258,7 +269,8 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
     counters.count(SneeCounter::kManifoldUnsupportedBoundary);
     return;
   }
-  const FacetExitTree* mesh = m.manifold_tree(light.wi);
+  const FacetExitTree* mesh = distant ? m.manifold_tree(light.wi) : nullptr;
+  const PointFacetTree* mesh_for_point = distant ? nullptr : m.manifold_point_tree(light.light);
   const size_t boundary = static_cast<size_t>(m.manifold_boundary);
   const DielectricParams& interface = ctx.surfaces[boundary].dielectric;
   const Vec3 w_before = state.direction_in_j(slot);
@@ -280,10 +292,13 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
   // One exit point y (outward normal n) whose refracted light reaches x_j along omega_r after
   // t, its contribution scaled by `share` (the inverse of the probability it was chosen, the
   // rate aside: the rate is in the density the weights divide by).
+  // A point or spot light as seen from an exit point y: its direction, distance and irradiance
+  // there (the same light: the selection does not depend on the point).
+  const auto light_at = [&](Vec3 y) {
+    return distant ? light : ctx.lights->sample(y, r.u[0], {r.u[1], r.u[2]});
+  };
   const auto connect = [&](Vec3 y, Vec3 n, Vec3 omega_r, double t, double share) {
-    // A point or spot light is seen from y: its direction, distance and irradiance there (the
-    // same light: the selection does not depend on the point).
-    const LightSample at_y = distant ? light : ctx.lights->sample(y, r.u[0], {r.u[1], r.u[2]});
+    const LightSample at_y = light_at(y);
     const double cos_l = dot(n, at_y.wi);
     const double jacobian = refraction_volume_jacobian(n, at_y.wi, interface.eta,
                                                        m.manifold_curvature, t, at_y.distance);
@@ -316,8 +331,10 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
     }
     counters.count(SneeCounter::kManifoldConnections);
   };
-  if (mesh != nullptr) {
-    connect_mesh_exits(mesh->exits_toward(x_j), u_choice, connect, counters);
+  if (mesh != nullptr || mesh_for_point != nullptr) {
+    connect_mesh_exits(
+        mesh != nullptr ? mesh->exits_toward(x_j) : mesh_for_point->exits_toward(x_j), u_choice,
+        connect, counters);
     if (ctx.snee.reflection_chains) counters.count(SneeCounter::kManifoldChainsUnsupported);
     return;
   }
@@ -332,12 +349,9 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
     const SphereExit& exit = exits.exit[static_cast<size_t>(e)];
     connect(exit.y, exit.n, exit.omega_r, exit.t, 1.0);
   }
-  if (ctx.snee.reflection_chains && !distant) {
-    // The chains are solved for a fixed light direction only (docs/method.md 3.12).
-    counters.count(SneeCounter::kManifoldChainsUnsupported);
-  } else if (ctx.snee.reflection_chains) {
-    connect_reflection_chains(ctx, state, slot, m, sphere, interface, light, u_choice, rate, shadow,
-                              counters);
+  if (ctx.snee.reflection_chains) {
+    connect_reflection_chains(ctx, state, slot, m, sphere, interface, light, light_at, u_choice,
+                              rate, shadow, counters);
   }
 }
 

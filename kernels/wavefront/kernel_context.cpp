@@ -110,30 +110,40 @@ bool nothing_reaches_into(const Scene& s, size_t sphere) {
   return true;
 }
 
-// A mesh boundary's exit trees for the manifold strategy, one per directional light; their
-// size grows with the mesh, so it is checked against the budget before any is built.
-std::shared_ptr<const std::vector<FacetExitTree>> facet_exit_trees(const Scene& s,
-                                                                   const Shape& mesh, float eta,
-                                                                   const MemoryBudget& budget) {
-  const auto directional =
-      static_cast<uint64_t>(std::count_if(s.lights.begin(), s.lights.end(), [](const Light& light) {
-        return light.kind == LightKind::kDirectional;
-      }));
+// A mesh boundary's exit trees for the manifold strategy, one per directional light and one per
+// point or spot light outside it; their size grows with the mesh, so it is checked against the
+// budget before any is built.
+void build_facet_exit_trees(const Scene& s, const Shape& mesh, float eta,
+                            const MemoryBudget& budget, MediumInfo& m) {
+  std::vector<int> directional, point;
+  for (size_t i = 0; i < s.lights.size(); ++i) {
+    const Light& light = s.lights[i];
+    if (light.kind == LightKind::kDirectional) directional.push_back(static_cast<int>(i));
+    if ((light.kind == LightKind::kPoint || light.kind == LightKind::kSpot) &&
+        point_facet_tree_applies(mesh.mesh, eta, light.position)) {
+      point.push_back(static_cast<int>(i));
+    }
+  }
   const uint64_t triangles = mesh.mesh.triangle_count();
-  const uint64_t bytes = saturating_multiply(directional, FacetExitTree::bytes_at_most(triangles));
+  const uint64_t bytes = saturating_add(
+      saturating_multiply(directional.size(), FacetExitTree::bytes_at_most(triangles)),
+      saturating_multiply(point.size(), PointFacetTree::bytes_at_most(triangles)));
   if (!budget.allows(bytes)) {
     throw std::invalid_argument(
         budget.exceeded("the manifold strategy's exit trees of the mesh '" + mesh.name + "' (" +
                             std::to_string(triangles) + " triangles, a tree for each of " +
-                            std::to_string(directional) + " directional lights)",
+                            std::to_string(directional.size()) + " directional and " +
+                            std::to_string(point.size()) + " point or spot lights)",
                         bytes));
   }
   auto trees = std::make_shared<std::vector<FacetExitTree>>();
-  trees->reserve(directional);
-  for (const Light& light : s.lights) {
-    if (light.kind == LightKind::kDirectional) trees->emplace_back(mesh.mesh, eta, light.direction);
-  }
-  return trees;
+  trees->reserve(directional.size());
+  for (const int i : directional) trees->emplace_back(mesh.mesh, eta, s.lights[i].direction);
+  auto point_trees = std::make_shared<std::vector<PointFacetTree>>();
+  point_trees->reserve(point.size());
+  for (const int i : point) point_trees->emplace_back(mesh.mesh, eta, s.lights[i].position, i);
+  m.manifold_mesh = std::move(trees);
+  m.manifold_mesh_points = std::move(point_trees);
 }
 
 }  // namespace
@@ -208,7 +218,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                !shape.smooth_shading) {
       if (integ == Integrator::kSnee) {
         m.manifold_boundary = static_cast<int32_t>(i);
-        m.manifold_mesh = facet_exit_trees(s, shape, info.dielectric.eta, budget);
+        build_facet_exit_trees(s, shape, info.dielectric.eta, budget, m);
       }
     } else {
       m.manifold_unsupported = true;

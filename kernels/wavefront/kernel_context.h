@@ -16,6 +16,7 @@
 #include "kernels/physics/medium/grid_medium.h"
 #include "kernels/physics/medium/homogeneous_medium.h"
 #include "kernels/physics/snee/manifold_mesh.h"
+#include "kernels/physics/snee/manifold_mesh_point.h"
 #include "kernels/physics/snee/snee_options.h"
 #include "kernels/wavefront/snee_counters.h"
 #include "scene/camera_frame.h"
@@ -101,9 +102,11 @@ struct MediumInfo {
   // A sphere boundary's centre and radius (zero for a mesh).
   Vec3 manifold_centre{0.0f, 0.0f, 0.0f};
   float manifold_radius = 0.0f;
-  // A mesh boundary's exit trees, one per directional light of the scene; null for a sphere.
-  // Built for snee only, the one integrator that runs the manifold strategy.
+  // A mesh boundary's exit trees, one per directional light of the scene, and one per point or
+  // spot light outside it (where point_facet_tree_applies); null for a sphere. Built for snee
+  // only, the one integrator that runs the manifold strategy.
   std::shared_ptr<const std::vector<FacetExitTree>> manifold_mesh = nullptr;
+  std::shared_ptr<const std::vector<PointFacetTree>> manifold_mesh_points = nullptr;
   // Whether the boundary is a smooth dielectric the manifold strategy has no solver for (a
   // smooth-shaded mesh, or several shapes): its single-scattered light under a directional
   // light is missing.
@@ -123,15 +126,24 @@ struct MediumInfo {
     }
     return nullptr;
   }
+  // The mesh boundary's exit tree for the point or spot light scene.lights[light]; null for a
+  // sphere, or where none applies.
+  const PointFacetTree* manifold_point_tree(int light) const {
+    if (!manifold_mesh_points) return nullptr;
+    for (const PointFacetTree& tree : *manifold_mesh_points) {
+      if (tree.light() == light) return &tree;
+    }
+    return nullptr;
+  }
   // Whether the manifold strategy finds this medium's exit points for the delta light sampled
   // at `at`: a directional light over a sphere boundary or a mesh with a tree for it, or a point
-  // or spot light outside a sphere boundary (sphere_exits_toward_point). Both the strategy
-  // (connect_manifold) and top-to-bottom's view of it (subdivision) ask this.
+  // or spot light outside a sphere boundary (sphere_exits_toward_point) or with a mesh tree.
+  // Both the strategy (connect_manifold) and top-to-bottom's view of it (subdivision) ask this.
   bool manifold_solves_for(const LightSample& light, Vec3 at) const {
     if (manifold_boundary < 0 || !light.delta) return false;
     if (std::isinf(light.distance)) return !manifold_mesh || manifold_tree(light.wi) != nullptr;
-    return !manifold_mesh &&
-           length(at + light.wi * light.distance - manifold_centre) > manifold_radius;
+    if (manifold_mesh) return manifold_point_tree(light.light) != nullptr;
+    return length(at + light.wi * light.distance - manifold_centre) > manifold_radius;
   }
 };
 

@@ -37,9 +37,8 @@ enum class SneeCounter : int {
   // reflection count, or the shadow segments one vertex may queue (both none in tests).
   kManifoldReflectionConnections,
   kManifoldReflectionDropped,
-  // Medium vertices whose reflection-last light is not searched: behind a mesh (docs/method.md
-  // 3.13), or under a point or spot light (chains are solved on spheres, for a fixed light
-  // direction, only). Mesh boundaries: vertices that saw the light through more
+  // Mesh boundaries (docs/method.md 3.13): medium vertices whose reflection-last light is not
+  // searched (chains are solved on spheres only); vertices that saw the light through more
   // facets than they connect, and connected a random run of them (unbiased); exit points beyond
   // what one query returns (none seen in tests), not connected.
   kManifoldChainsUnsupported,

@@ -298,6 +298,7 @@ LightSample LightTable::sample(Vec3 p, float u_select, Vec2 u) const {
       break;
   }
   s.valid = s.pdf > 0 && std::isfinite(s.pdf) && !is_black(s.radiance);
+  s.light = index;
   return s;
 }
 

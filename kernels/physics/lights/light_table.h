@@ -30,6 +30,7 @@ struct LightSample {
   float pdf = 0;               // solid angle (delta lights: the selection probability)
   bool delta = false;
   bool valid = false;
+  int light = -1;  // the index in scene.lights of the light it sampled
 };
 
 // The shadow ray of a light sample taken at shading point p, starting from `origin` (p moved

@@ -17,17 +17,14 @@ constexpr uint32_t kLeafFacets = 1;
 // never closes a node that holds a solution.
 constexpr double kRelativeSlack = 1e-5;
 
-// The refraction of light arriving from direction `light` (unit, toward the light) through a
-// surface of outward normal n into the inside, as a unit propagation direction; zero when the
-// facet faces away or the light cannot enter.
+}  // namespace
+
 Vec3d refracted_inward(const Vec3d& n, const Vec3d& light, double eta) {
   const double e = 1.0 / eta, c = dot(n, light);
   const double k2 = 1.0 - e * e * (1.0 - c * c);
   if (!(c > 0) || !(k2 > 0)) return {};
   return normalize(-e * light + (e * c - std::sqrt(k2)) * n);
 }
-
-}  // namespace
 
 FacetExitTree::FacetExitTree(const TriangleMesh& mesh, float eta, Vec3 light) : light_(light) {
   const Vec3d l = normalize(Vec3d(light));
@@ -37,23 +34,17 @@ FacetExitTree::FacetExitTree(const TriangleMesh& mesh, float eta, Vec3 light) : 
   double scale = 0;
   // Reserved in full so the memory is what bytes_at_most promised, not a doubling past it.
   facets_.reserve(mesh.triangle_count());
-  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Vec3& p0 = mesh.positions[mesh.indices[3 * t]];
-    const Vec3& p1 = mesh.positions[mesh.indices[3 * t + 1]];
-    const Vec3& p2 = mesh.positions[mesh.indices[3 * t + 2]];
-    const Vec3d area = cross(Vec3d(p1) - Vec3d(p0), Vec3d(p2) - Vec3d(p0));
-    if (!(length(area) > 0)) continue;
-    const Vec3d n = normalize(area);
+  for_each_facet(mesh, [&](const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3d& n) {
     // Facing the light, the refracted beam runs within 90 degrees of the light's travel (it
     // turns toward the inward normal by less than the incidence angle), so its tilt is finite.
     const Vec3d omega_r = refracted_inward(n, l, eta);
-    if (!(dot(omega_r, along_) > 0)) continue;
+    if (!(dot(omega_r, along_) > 0)) return;
     facets_.push_back({p0, p1 - p0, p2 - p0, Vec3(n), Vec3(omega_r)});
     for (const Vec3& p : {p0, p1, p2}) {
       scale =
           std::max({scale, std::abs(double{p.x}), std::abs(double{p.y}), std::abs(double{p.z})});
     }
-  }
+  });
   slack_ = kRelativeSlack * scale;
   if (!facets_.empty()) {
     nodes_.reserve(2 * facets_.size() / kLeafFacets + 1);
@@ -116,10 +107,7 @@ uint32_t FacetExitTree::build(uint32_t first, uint32_t count) {
     const Vec3d c = centroid(f);
     return axis == 0 ? c.x : (axis == 1 ? c.y : c.z);
   };
-  const uint32_t half = count / 2;
-  std::nth_element(facets_.begin() + first, facets_.begin() + first + half,
-                   facets_.begin() + first + count,
-                   [&key](const Facet& a, const Facet& b) { return key(a) < key(b); });
+  const uint32_t half = split_at_median(facets_, first, count, key);
   nodes_[index] = node;
   build(first, half);
   nodes_[index].second = build(first + half, count - half);

@@ -40,6 +40,36 @@ struct MeshExits {
   int dropped = 0;  // solutions beyond kMaxMeshExits (none seen in tests)
 };
 
+// The refraction of light arriving from direction `light` (unit, toward the light) through a
+// surface of outward normal n into the inside (relative index eta), as a unit propagation
+// direction; zero when the surface faces away or the light cannot enter.
+Vec3d refracted_inward(const Vec3d& n, const Vec3d& light, double eta);
+
+// Calls f(p0, p1, p2, n) for every triangle of `mesh` with a non-zero area: its corners in
+// winding order and its outward unit normal, in double.
+template <class F>
+void for_each_facet(const TriangleMesh& mesh, const F& f) {
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3& p0 = mesh.positions[mesh.indices[3 * t]];
+    const Vec3& p1 = mesh.positions[mesh.indices[3 * t + 1]];
+    const Vec3& p2 = mesh.positions[mesh.indices[3 * t + 2]];
+    const Vec3d area = cross(Vec3d(p1) - Vec3d(p0), Vec3d(p2) - Vec3d(p0));
+    if (length(area) > 0) f(p0, p1, p2, normalize(area));
+  }
+}
+
+// Both facet trees split a node at the median: reorders facets[first, first + count) so that
+// the lower half by key(facet) comes first, and returns that half's size.
+template <class Facet, class Key>
+uint32_t split_at_median(std::vector<Facet>& facets, uint32_t first, uint32_t count,
+                         const Key& key) {
+  const uint32_t half = count / 2;
+  std::nth_element(facets.begin() + first, facets.begin() + first + half,
+                   facets.begin() + first + count,
+                   [&key](const Facet& a, const Facet& b) { return key(a) < key(b); });
+  return half;
+}
+
 class FacetExitTree {
  public:
   // The facets of `mesh` (world space, outward winding) that face `light` (unit direction

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <numbers>
 
 #include "core/vec3d.h"
@@ -281,6 +282,10 @@ Dual operator*(Dual a, Dual b) {
 Dual operator*(double s, Dual a) {
   return {s * a.v, s * a.d1, s * a.d2};
 }
+Dual inverse(Dual a) {
+  const double r = 1.0 / a.v;
+  return {r, -a.d1 * r * r, -a.d2 * r * r};
+}
 Dual sqrt(Dual a) {
   const double r = std::sqrt(a.v);
   return {r, 0.5 * a.d1 / r, 0.5 * a.d2 / r};
@@ -298,6 +303,9 @@ DualVec operator*(Dual s, const DualVec& a) {
 Dual dot(const DualVec& a, const DualVec& b) {
   return a.x * b.x + a.y * b.y + a.z * b.z;
 }
+DualVec operator-(const DualVec& a, const DualVec& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
 DualVec constant(const Vec3d& v) {
   return {{v.x, 0, 0}, {v.y, 0, 0}, {v.z, 0, 0}};
 }
@@ -307,8 +315,7 @@ DualVec constant(const Vec3d& v) {
 struct DualChain {
   DualVec last_point, last_direction;
 };
-DualChain trace_dual_chain(const DualVec& n, const Vec3d& light, double e, int reflections) {
-  const DualVec a = constant(light);
+DualChain trace_dual_chain(const DualVec& n, const DualVec& a, double e, int reflections) {
   const Dual c = dot(n, a);
   const Dual k = sqrt(Dual{1, 0, 0} - (e * e) * (Dual{1, 0, 0} - c * c));
   DualVec d = (-e) * Dual{1, 0, 0} * a + (e * c - k) * n;
@@ -324,42 +331,53 @@ Vec3d tangent_to(const Vec3d& n) {
   return normalize(std::abs(n.x) < 0.9 ? cross(n, Vec3d(1, 0, 0)) : cross(n, Vec3d(0, 1, 0)));
 }
 
-// The chain's equation in the plane of the light (axis a) and x (polar radius rho, angle chi
-// from a, in units of the sphere's radius). A ray entering at angle phi refracts to the angular
-// momentum L = e sin(phi) about the centre, which every chord keeps; after m reflections its
-// direction has the angle psi = phi + (m + 1) pi - (2m + 1) asin(L), and x lies on that chord
-// iff its own moment about the centre matches: rho sin(psi - chi) = L.
+// The chain's equation in the plane of the light (axis a: its direction, or the direction from
+// the centre to a point light at l a) and x (polar radius rho, angle chi from a, in units of the
+// sphere's radius), in the angle of incidence theta at the entry. The entry's polar angle is
+// phi = theta - asin(sin(theta) / l) (the triangle of centre, light and entry; phi = theta for a
+// directional light, 1 / l = 0), so theta in (-pi/2, pi/2) covers every entry that sees the light.
+// The ray refracts to the angular momentum L = e sin(theta) about the centre, which every chord
+// keeps; after m reflections its direction has the angle psi = phi + (m + 1) pi - (2m + 1)
+// asin(L), and x lies on that chord iff its own moment about the centre matches:
+// rho sin(psi - chi) = L.
 struct ChainEquation {
   double e, rho, chi;
   int m;
-  double value(double phi, double* derivative) const {
-    const double s = std::sin(phi), c = std::cos(phi);
+  double inverse_l;  // 1 / l: 0 for a directional light
+  double value(double theta, double* derivative) const {
+    const double s = std::sin(theta), c = std::cos(theta);
     const double moment = e * s;
     const double k = std::sqrt(1.0 - moment * moment);
-    const double psi = direction_angle(phi, moment);
-    const double dpsi = 1.0 - (2 * m + 1) * e * c / k;
+    const double psi = direction_angle(theta, moment);
+    const double dphi = 1.0 - inverse_l * c / std::sqrt(1.0 - inverse_l * inverse_l * s * s);
+    const double dpsi = dphi - (2 * m + 1) * e * c / k;
     *derivative = rho * std::cos(psi - chi) * dpsi - e * c;
     return rho * std::sin(psi - chi) - moment;
   }
-  double psi(double phi) const { return direction_angle(phi, e * std::sin(phi)); }
-  double direction_angle(double phi, double moment) const {
-    return phi + (m + 1) * kPiD - (2 * m + 1) * std::asin(moment);
+  double phi(double theta) const { return theta - std::asin(inverse_l * std::sin(theta)); }
+  double psi(double theta) const { return direction_angle(theta, e * std::sin(theta)); }
+  double direction_angle(double theta, double moment) const {
+    return phi(theta) + (m + 1) * kPiD - (2 * m + 1) * std::asin(moment);
   }
   static constexpr double kPiD = std::numbers::pi;
 };
 
-// A bound on |F''| over the whole domain, from |psi'| <= 1 + (2m + 1) e / k_min and
-// |psi''| <= (2m + 1) e (1 / k_min + e^2 / k_min^3), k_min = sqrt(1 - e^2):
-// F'' = rho (-sin(psi - chi) psi'^2 + cos(psi - chi) psi'') + e sin(phi).
+// A bound on |F''| over the whole domain, from phi' = 1 - cos(theta) / sqrt(l^2 - sin^2(theta))
+// in [0, 1], |phi''| = |sin(theta)| (l^2 - 1) / (l^2 - sin^2(theta))^(3/2) <= 1 / sqrt(l^2 - 1),
+// so |psi'| <= 1 + (2m + 1) e / k_min and |psi''| <= 1 / sqrt(l^2 - 1) + (2m + 1) e (1 / k_min +
+// e^2 / k_min^3), k_min = sqrt(1 - e^2):
+// F'' = rho (-sin(psi - chi) psi'^2 + cos(psi - chi) psi'') + e sin(theta).
 double curvature_bound(const ChainEquation& eq) {
   const double k_min = std::sqrt(1.0 - eq.e * eq.e), turns = 2.0 * eq.m + 1.0;
   const double d1 = 1.0 + turns * eq.e / k_min;
-  const double d2 = turns * eq.e * (1.0 / k_min + eq.e * eq.e / (k_min * k_min * k_min));
+  const double d2 = eq.inverse_l / std::sqrt(1.0 - eq.inverse_l * eq.inverse_l) +
+                    turns * eq.e * (1.0 / k_min + eq.e * eq.e / (k_min * k_min * k_min));
   return eq.rho * (d1 * d1 + d2) + eq.e;
 }
 
 // The roots of the chain equation on (-pi/2, pi/2), none missed: the domain is cut into cells
-// (psi turning by at most pi/4 in each, which leaves most cells decided at once), and each cell
+// (psi turning by at most pi/4 in each, which leaves most cells decided at once; the cuts where
+// psi turns back are exact for a directional light, and only save cells otherwise), and each cell
 // is split until the bound C on |F''| decides it. With F and F' at both ends of a cell of width
 // h, a cell whose ends agree in sign holds no root if the two parabolas |F(end)| +- F'(end) u -
 // C u^2 / 2 that bound |F| from below stay positive across it; a cell whose ends differ holds
@@ -374,7 +392,7 @@ class ChainRootFinder {
     constexpr double kHalfPi = 0.5 * ChainEquation::kPiD, kEdge = 1e-9;
     std::array<double, 4> knots{-kHalfPi + kEdge, 0, 0, 0};
     int knot_count = 1;
-    // psi' = 0 where (2m + 1) e cos(phi) = k, i.e. cos^2(phi) = q.
+    // For a directional light psi' = 0 where (2m + 1) e cos(theta) = k, i.e. cos^2(theta) = q.
     const double turns2 = (2.0 * eq_.m + 1.0) * (2.0 * eq_.m + 1.0);
     const double q = (1.0 - eq_.e * eq_.e) / (eq_.e * eq_.e * (turns2 - 1.0));
     if (q > 0 && q < 1) {
@@ -446,15 +464,21 @@ class ChainRootFinder {
 }  // namespace
 
 double sphere_chain_volume_jacobian(Vec3 n_in, Vec3 light, float eta, int reflections,
-                                    double t_over_radius) {
+                                    double t_over_radius, double light_distance_over_radius) {
   const Vec3d n = normalize(Vec3d(n_in)), w = normalize(Vec3d(light));
   const double e = 1.0 / eta, c = dot(n, w);
   if (!(c > 0) || !(1.0 - e * e * (1.0 - c * c) > 0)) return 0.0;
   // On the unit sphere the entry point is its own normal; moving it along a unit tangent v
-  // moves it by v, so the surface parameters (u1, u2) have unit area element.
+  // moves it by v, so the surface parameters (u1, u2) have unit area element. A point light's
+  // direction turns as the entry moves.
   const Vec3d v1 = tangent_to(n), v2 = cross(n, v1);
   const DualVec y = {{n.x, v1.x, v2.x}, {n.y, v1.y, v2.y}, {n.z, v1.z, v2.z}};
-  const DualChain chain = trace_dual_chain(y, w, e, reflections);
+  DualVec toward_light = constant(w);
+  if (!std::isinf(light_distance_over_radius)) {
+    const DualVec to_light = constant(n + light_distance_over_radius * w) - y;
+    toward_light = inverse(sqrt(dot(to_light, to_light))) * to_light;
+  }
+  const DualChain chain = trace_dual_chain(y, toward_light, e, reflections);
   const DualVec& p = chain.last_point;
   const DualVec& d = chain.last_direction;
   const Vec3d dx1(p.x.d1 + t_over_radius * d.x.d1, p.y.d1 + t_over_radius * d.y.d1,
@@ -487,30 +511,32 @@ double chain_search_probability(Rgb sigma_t, float radius) {
   return std::clamp(0.5 * std::exp(-clearest * radius), 1.0 / 32.0, 0.5);
 }
 
-SphereChains sphere_reflection_chains_toward_light(Vec3 centre, float radius, float eta, Vec3 light,
-                                                   Vec3 x, int reflections) {
+namespace {
+
+// The chains with m reflections in the light's plane: toward a directional light along
+// plane.a (light_distance infinite), or a point light at light_distance radii from the centre
+// along plane.a.
+SphereChains chains_in_plane(Vec3 centre, float radius, float eta, const LightPlane& plane,
+                             double light_distance, int m) {
   SphereChains out;
   const double e = 1.0 / eta, r = radius;
-  const LightPlane plane = light_plane(centre, radius, light, x);
-  if (reflections < 1 || reflections > kMaxChainReflections || !plane.valid || !(e < 1.0)) {
-    return out;
-  }
-  const Vec3d &a = plane.a, &b = plane.b;
-  const double p_a = plane.p_a, p_b = plane.p_b;
-  const Vec3d& p = plane.p;
-  const int m = reflections;
-  const ChainEquation eq{e, std::sqrt(p_a * p_a + p_b * p_b), std::atan2(p_b, p_a), m};
+  if (m < 1 || m > kMaxChainReflections || !plane.valid || !(e < 1.0)) return out;
+  const Vec3d &a = plane.a, &b = plane.b, &p = plane.p;
+  const bool distant = std::isinf(light_distance);
+  const ChainEquation eq{e, std::sqrt(plane.p_a * plane.p_a + plane.p_b * plane.p_b),
+                         std::atan2(plane.p_b, plane.p_a), m, distant ? 0.0 : 1.0 / light_distance};
   std::array<double, kMaxChainsPerReflectionCount> roots{};
   const int found = ChainRootFinder(eq, roots.data(), kMaxChainsPerReflectionCount).solve();
   out.dropped = std::max(0, found - kMaxChainsPerReflectionCount);
   for (int i = 0; i < std::min(found, kMaxChainsPerReflectionCount); ++i) {
-    const Vec3d n =
-        std::cos(roots[static_cast<size_t>(i)]) * a + std::sin(roots[static_cast<size_t>(i)]) * b;
-    const double c = dot(n, a);
+    const double phi = eq.phi(roots[static_cast<size_t>(i)]);
+    const Vec3d n = std::cos(phi) * a + std::sin(phi) * b;
+    const Vec3d toward_light = distant ? a : normalize(light_distance * a - n);
+    const double c = dot(n, toward_light);
     const double k2 = 1.0 - e * e * (1.0 - c * c);
     if (!(c > 0) || !(k2 > 0)) continue;
     const double k = std::sqrt(k2);
-    Vec3d d = -e * a + (e * c - k) * n;
+    Vec3d d = -e * toward_light + (e * c - k) * n;
     Vec3d q = n;
     SphereChain chain;
     chain.reflections = m;
@@ -530,11 +556,30 @@ SphereChains sphere_reflection_chains_toward_light(Vec3 centre, float radius, fl
     chain.omega_last = Vec3(normalize(d));
     chain.t_last = t * r;
     chain.length = (2.0 * k * m + t) * r;
-    chain.jacobian = sphere_chain_volume_jacobian(Vec3(n), Vec3(a), eta, m, t);
+    chain.jacobian =
+        sphere_chain_volume_jacobian(Vec3(n), Vec3(toward_light), eta, m, t,
+                                     distant ? light_distance : length(light_distance * a - n));
     if (!(chain.jacobian > 0)) continue;
     out.chain[static_cast<size_t>(out.count++)] = chain;
   }
   return out;
+}
+
+}  // namespace
+
+SphereChains sphere_reflection_chains_toward_light(Vec3 centre, float radius, float eta, Vec3 light,
+                                                   Vec3 x, int reflections) {
+  return chains_in_plane(centre, radius, eta, light_plane(centre, radius, light, x),
+                         std::numeric_limits<double>::infinity(), reflections);
+}
+
+SphereChains sphere_reflection_chains_toward_point(Vec3 centre, float radius, float eta,
+                                                   Vec3 light_position, Vec3 x, int reflections) {
+  const Vec3d to_light = (Vec3d(light_position) - Vec3d(centre)) / static_cast<double>(radius);
+  const double l = length(to_light);
+  if (!(l > 1.0)) return {};
+  return chains_in_plane(centre, radius, eta, light_plane(centre, radius, Vec3(to_light / l), x), l,
+                         reflections);
 }
 
 }  // namespace snee

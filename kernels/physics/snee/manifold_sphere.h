@@ -102,16 +102,23 @@ double chain_search_probability(Rgb sigma_t, float radius);
 // which the directional light (light = unit direction toward it), refracted into the sphere at a
 // point facing it, reaches x inside. The chain stays in the plane of the light direction and
 // x - centre, and every reflection keeps the ray's angular momentum about the centre; that leaves
-// one equation in the entry angle, whose roots are isolated with a bound on its curvature, so
-// none is missed (docs/method.md 3.12). None when x lies on the axis.
+// one equation in the angle of incidence, whose roots are isolated with a bound on its
+// curvature, so none is missed (docs/method.md 3.12). None when x lies on the axis.
 SphereChains sphere_reflection_chains_toward_light(Vec3 centre, float radius, float eta, Vec3 light,
                                                    Vec3 x, int reflections);
+// The same for a point (or spot) light at light_position outside the sphere: the chains lie in
+// the plane of the centre, the light and x. None when the light is not outside.
+SphereChains sphere_reflection_chains_toward_point(Vec3 centre, float radius, float eta,
+                                                   Vec3 light_position, Vec3 x, int reflections);
 
 // |dV(x) / (dA(y) dt)| for x = P_m(y) + t omega_m(y), the last chord of the chain that enters a
 // sphere at y (outward normal n) and reflects `reflections` times, t measured in units of the
-// radius (the value does not depend on the radius). Differentiated exactly by forward-mode
-// dual numbers; for no reflection it equals refraction_volume_jacobian with curvature 1 / radius.
+// radius (the value does not depend on the radius); light is the unit direction toward the light
+// at y, a directional light's or that of a point light at light_distance_over_radius radii from
+// y, whose direction turns as y moves. Differentiated exactly by forward-mode dual numbers; for
+// no reflection it equals refraction_volume_jacobian with curvature 1 / radius.
 double sphere_chain_volume_jacobian(Vec3 n, Vec3 light, float eta, int reflections,
-                                    double t_over_radius);
+                                    double t_over_radius,
+                                    double light_distance_over_radius = kInfinity);
 
 }  // namespace snee
