@@ -237,5 +237,34 @@ TEST(ManifoldChains, ReflectionCountFollowsItsProbabilities) {
   EXPECT_EQ(chain_search_probability(Rgb(40.0f), 1.0f), 1.0 / 32.0);
 }
 
+// What the choice leaves of its random number (the start of a subsampled run of chains) is
+// uniform on [0, 1) and independent of the count chosen: chi-square over 10 bins, for m = 1,
+// m = 2 and m >= 3 separately, 400k draws.
+TEST(ManifoldChains, LeftoverIsUniformWhateverTheCount) {
+  constexpr double kChainSearchProbability = 0.3;
+  constexpr int kBins = 10, kGroups = 3;
+  std::vector<std::vector<double>> observed(kGroups, std::vector<double>(kBins, 0.0));
+  TestRng rng(31);
+  for (int k = 0; k < 400000; ++k) {
+    const ChainChoice c = choose_chain_reflections(rng.uniform(), kChainSearchProbability);
+    if (c.reflections == 0) continue;
+    ASSERT_GE(c.leftover, 0.0);
+    ASSERT_LT(c.leftover, 1.0);
+    observed[static_cast<size_t>(std::min(c.reflections, kGroups) - 1)]
+            [static_cast<size_t>(c.leftover * kBins)] += 1;
+  }
+  for (int g = 0; g < kGroups; ++g) {
+    double total = 0, statistic = 0;
+    for (const double o : observed[static_cast<size_t>(g)]) total += o;
+    for (const double o : observed[static_cast<size_t>(g)]) {
+      const double expected = total / kBins;
+      statistic += (o - expected) * (o - expected) / expected;
+    }
+    EXPECT_GT(total, 5000) << "group " << g;
+    EXPECT_GT(test::chi2_survival(statistic, kBins - 1), 1e-4)
+        << "group " << g << ": chi-square " << statistic;
+  }
+}
+
 }  // namespace
 }  // namespace snee

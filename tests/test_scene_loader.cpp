@@ -223,6 +223,19 @@ TEST_F(SceneLoaderTest, MaterialsExampleLoads) {
   expect_round_trip(loaded, example.string());
 }
 
+// The point- and spot-light example of docs/lights.md loads: two spheres behind a smooth
+// boundary, a spot, a point light and a sky.
+TEST_F(SceneLoaderTest, SpotLitExampleLoads) {
+  const fs::path example =
+      fs::path(SNEE_PROJECT_DATA_DIR).parent_path() / "docs/examples/spot-lit.json";
+  const LoadedScene loaded = load_scene_file(example.string());
+  ASSERT_EQ(loaded.scene.lights.size(), 3u);
+  EXPECT_EQ(loaded.scene.lights[0].kind, LightKind::kSpot);
+  EXPECT_EQ(loaded.scene.lights[1].kind, LightKind::kPoint);
+  EXPECT_EQ(loaded.scene.materials[0].roughness, 0.0f);
+  EXPECT_TRUE(loaded.warnings.empty());
+}
+
 TEST_F(SceneLoaderTest, BadLightSelectionNamesItsPath) {
   json doc = full_scene();
   doc["render"]["light_selection"] = "importance";

@@ -177,20 +177,24 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
   const Rgb beta = state.throughput(slot);
   const size_t per_chain =
       m.manifold_interior_clear ? 1 : static_cast<size_t>(choice.reflections) + 2;
-  size_t budget = kChainSegmentBudget;
-  for (int c = 0; c < chains.count; ++c) {
-    const SphereChain& chain = chains.chain[static_cast<size_t>(c)];
-    if (per_chain > budget) {
-      counters.count(SneeCounter::kManifoldReflectionDropped);
-      continue;
-    }
+  // More chains than the segment budget holds: a run of those that fit, cyclically from a start
+  // drawn with what the choice left of u, each standing for n / run (every chain is in the run
+  // with probability run / n, so the estimate stays unbiased).
+  const int n = chains.count;
+  const int run = std::min(n, static_cast<int>(kChainSegmentBudget / per_chain));
+  const int start = n > run ? std::min(static_cast<int>(choice.leftover * n), n - 1) : 0;
+  if (n > run) counters.count(SneeCounter::kManifoldExitsSubsampled);
+  const double share = static_cast<double>(n) / run;
+  for (int k = 0; k < run; ++k) {
+    const SphereChain& chain = chains.chain[static_cast<size_t>((start + k) % n)];
     const LightSample at_y = light_at(chain.y);
     const double cos_l = dot(chain.n, at_y.wi);
     if (!(at_y.pdf > 0) || !(cos_l > 0)) continue;
     // Every reflection meets the boundary at the refracted angle of the entry, so each
     // reflects the entry's Fresnel reflectance F_r (the same from both sides of the pair).
     const double reflectance = fresnel_dielectric(static_cast<float>(cos_l), interface.eta);
-    const double scale = hg_phase(dot(w_before, -chain.omega_last), m.medium.asymmetry(x_j)) *
+    const double scale = share *
+                         hg_phase(dot(w_before, -chain.omega_last), m.medium.asymmetry(x_j)) *
                          (1.0 - reflectance) * std::pow(reflectance, chain.reflections) * cos_l /
                          (chain.jacobian * light.pdf * choice.probability * rate);
     // The chain bends at its reflections; in a homogeneous medium (the manifold strategy's
@@ -218,7 +222,6 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
       }
       segments += static_cast<uint32_t>(chain.reflections) + 1;
     }
-    budget -= segments;
     shadow.add_connection(
         {ConnectionKind::kManifold, slot, first, segments, -1, unweighted, Rgb(0.0f)});
     counters.count(SneeCounter::kManifoldReflectionConnections);

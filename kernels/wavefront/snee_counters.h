@@ -33,14 +33,15 @@ enum class SneeCounter : int {
   // inside the sphere): their light through one refraction is not rendered.
   kManifoldUnsupportedBoundary,
   // Manifold connections along chains of internal reflections (docs/method.md 3.12), one per
-  // chain found, and chains found but not connected: beyond the solutions kept for one
-  // reflection count, or the shadow segments one vertex may queue (both none in tests).
+  // chain connected, and chains found but not connected: beyond the solutions kept for one
+  // reflection count (none in tests).
   kManifoldReflectionConnections,
   kManifoldReflectionDropped,
   // Mesh boundaries (docs/method.md 3.13): medium vertices whose reflection-last light is not
   // searched (chains are solved on spheres only); vertices that saw the light through more
-  // facets than they connect, and connected a random run of them (unbiased); exit points beyond
-  // what one query returns (none seen in tests), not connected.
+  // facets, or along more sphere chains, than their shadow segments can connect, and connected
+  // a random run of them (unbiased); exit points beyond what one query returns (none seen in
+  // tests), not connected.
   kManifoldChainsUnsupported,
   kManifoldExitsSubsampled,
   kManifoldExitsDropped,

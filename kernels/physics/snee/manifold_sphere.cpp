@@ -503,7 +503,9 @@ ChainChoice choose_chain_reflections(float u, double search) {
   int m = std::max(1, static_cast<int>((-1.0 + std::sqrt(1.0 + 8.0 / v)) / 2.0));
   while (m > 1 && tail(m) < v) --m;
   while (tail(m + 1) >= v) ++m;
-  return {m, chain_reflections_probability(m, search)};
+  // Where v fell within m's interval (tail(m + 1), tail(m)]: uniform, and independent of m.
+  const double leftover = std::clamp((tail(m) - v) / (tail(m) - tail(m + 1)), 0.0, 0x1.fffffep-1);
+  return {m, chain_reflections_probability(m, search), leftover};
 }
 
 double chain_search_probability(Rgb sigma_t, float radius) {

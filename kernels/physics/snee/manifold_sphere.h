@@ -57,8 +57,8 @@ double refraction_volume_jacobian(Vec3 n, Vec3 light, float eta, double curvatur
 inline constexpr int kMaxChainReflections = 16;
 inline constexpr int kMaxChainsPerReflectionCount = 24;
 // Shadow segments the chains of one medium vertex may queue: one per chain (its light segment)
-// when nothing else reaches into the sphere, one per chord more otherwise; chains beyond it are
-// counted as dropped.
+// when nothing else reaches into the sphere, one per chord more otherwise; where more chains are
+// found, a random run of those that fit is connected, each standing for the others.
 inline constexpr size_t kChainSegmentBudget = 32;
 
 // The refracted light entering at y, reflected specularly inside the sphere `reflections`
@@ -89,6 +89,7 @@ struct SphereChains {
 struct ChainChoice {
   int reflections = 0;       // 0: no search at this vertex
   double probability = 0.0;  // of this choice, the search probability included
+  double leftover = 0.0;     // a uniform number in [0, 1) independent of the choice
 };
 ChainChoice choose_chain_reflections(float u, double search);
 // P(m) of the choice above for m >= 1, the search probability included.
