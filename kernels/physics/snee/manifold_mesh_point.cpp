@@ -44,8 +44,21 @@ PointFacetTree::PointFacetTree(const TriangleMesh& mesh, float eta, Vec3 light_p
   const Vec3d l(light_position);
   // Reserved in full so the memory is what bytes_at_most promised, not a doubling past it.
   facets_.reserve(mesh.triangle_count());
+  // Each facet's cone. The light's directions toward a facet fill the spherical triangle of its
+  // corners' directions, inside the cone around their mean that reaches the farthest corner.
+  // Refraction into a denser inside maps directions with a Jacobian whose singular values are e
+  // and e cos(incidence) / cos(refraction), both at most e <= 1, so the refracted directions lie
+  // within e times that angle of the mean's refraction.
   for_each_facet(mesh, [&](const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3d& n) {
-    if (dot(n, l - Vec3d(p0)) > 0) facets_.push_back({p0, p1 - p0, p2 - p0, Vec3(n)});
+    if (!(dot(n, l - Vec3d(p0)) > 0)) return;
+    Facet f{p0, p1 - p0, p2 - p0, Vec3(n), {}, 0};
+    const Vec3d d0 = normalize(Vec3d(f.p0) - l), d1 = normalize(Vec3d(f.p0 + f.e1) - l),
+                d2 = normalize(Vec3d(f.p0 + f.e2) - l);
+    const Vec3d mean = normalize(d0 + d1 + d2);
+    f.axis = refracted_inward(Vec3d(f.n), -mean, 1.0 / e_);
+    f.spread =
+        e_ * std::max({angle_between(mean, d0), angle_between(mean, d1), angle_between(mean, d2)});
+    facets_.push_back(f);
   });
   if (!facets_.empty()) {
     nodes_.reserve(2 * facets_.size() + 1);
@@ -62,7 +75,6 @@ uint64_t PointFacetTree::bytes_at_most(uint64_t triangles) {
 uint32_t PointFacetTree::build(uint32_t first, uint32_t count) {
   const uint32_t index = static_cast<uint32_t>(nodes_.size());
   nodes_.emplace_back();
-  const Vec3d l(light_position_);
   // The ball: around the vertices' bounding box.
   Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
   double scale = 0;
@@ -78,32 +90,17 @@ uint32_t PointFacetTree::build(uint32_t first, uint32_t count) {
   Node node;
   node.centre = Vec3(0.5 * (lo + hi));
   node.radius = static_cast<float>(0.5 * length(hi - lo) + kRelativeSlack * scale);
-  // The cone. The light's directions toward a facet fill the spherical triangle of its corners'
-  // directions, inside the cone around their mean that reaches the farthest corner. Refraction
-  // into a denser inside maps directions with a Jacobian whose singular values are e and
-  // e cos(incidence) / cos(refraction), both at most e <= 1, so the refracted directions lie
-  // within e times that angle of the mean's refraction. A node's cone covers its facets' cones.
-  std::vector<std::pair<Vec3d, double>> cones;
-  cones.reserve(count);
+  // The cone: around the mean of its facets' cone axes, covering each facet's cone.
   Vec3d sum{};
-  for (uint32_t i = first; i < first + count; ++i) {
-    const Facet& f = facets_[i];
-    const Vec3d d0 = normalize(Vec3d(f.p0) - l), d1 = normalize(Vec3d(f.p0 + f.e1) - l),
-                d2 = normalize(Vec3d(f.p0 + f.e2) - l);
-    const Vec3d mean = normalize(d0 + d1 + d2);
-    const double spread =
-        std::max({angle_between(mean, d0), angle_between(mean, d1), angle_between(mean, d2)});
-    const Vec3d axis = refracted_inward(Vec3d(f.n), -mean, 1.0 / e_);
-    cones.emplace_back(axis, e_ * spread);
-    sum = sum + axis;
-  }
+  for (uint32_t i = first; i < first + count; ++i) sum = sum + facets_[i].axis;
   double half_angle = kPiD;
   Vec3d axis(0, 0, 1);
   if (length(sum) > 1e-9) {
     axis = normalize(sum);
     half_angle = 0;
-    for (const auto& [a, spread] : cones)
-      half_angle = std::max(half_angle, angle_between(axis, a) + spread);
+    for (uint32_t i = first; i < first + count; ++i) {
+      half_angle = std::max(half_angle, angle_between(axis, facets_[i].axis) + facets_[i].spread);
+    }
   }
   node.axis = Vec3(axis);
   node.half_angle = static_cast<float>(std::min(kPiD, half_angle + kAngleSlack));
@@ -171,8 +168,8 @@ MeshExits PointFacetTree::exits_toward(Vec3 x_in) const {
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    const uint32_t index = static_cast<uint32_t>(&node - nodes_.data());
+    const uint32_t index = stack[--top];
+    const Node& node = nodes_[index];
     // A ray from a point of the ball along a direction of the cone reaches x only if the
     // directions from the ball to x (within asin(radius / distance) of the centre's) meet the
     // cone.

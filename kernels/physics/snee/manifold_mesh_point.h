@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/vec3d.h"
 #include "kernels/physics/snee/manifold_mesh.h"
 #include "scene/scene.h"
 
@@ -38,6 +39,8 @@ class PointFacetTree {
   struct Facet {
     Vec3 p0, e1, e2;  // corner and edges
     Vec3 n;           // outward unit normal
+    Vec3d axis;       // a cone around the refracted directions of its points (build)
+    double spread = 0;
   };
   struct Node {
     Vec3 centre;  // a ball around the facets' vertices
