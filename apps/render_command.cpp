@@ -188,8 +188,9 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->group(snee);
   c.add_option("--snee-chains", snee_chains_,
                "Whether the manifold strategy follows the light through internal reflections "
-               "inside a smooth sphere (on, the default; off leaves those paths out, to measure "
-               "them: docs/method.md 3.12)")
+               "inside a smooth sphere or closed flat-shaded mesh (on, the default; off leaves "
+               "those paths out, to measure them, and builds no chain trees: docs/method.md 3.12, "
+               "3.14)")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str()
       ->group(snee);

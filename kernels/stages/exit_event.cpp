@@ -146,24 +146,79 @@ void connect_exit_emission(const KernelContext& ctx, const PathState& state, uin
 
 namespace {
 
-// The manifold strategy's reflection chains (docs/method.md 3.12): the light refracted in at y
-// and reflected specularly inside the sphere before it reaches x_j. No other strategy makes
-// these paths under a delta light, so each counts with weight 1, over the probability of having
-// searched its reflection count (`u`) at a vertex where the strategy ran (`rate`). The walk
-// would have spent one depth per reflection and one for the exit, so chains stop where the path
-// tracer's depth limit would. `light` is the light as sampled at x_j, `light_at(y)` as seen from
-// an entry point y (the same light; a point light's direction and irradiance there).
+// One reflection chain of the manifold strategy (docs/method.md 3.12, 3.14): the light
+// refracted in at chain.y and reflected specularly inside before it reaches x_j. No other
+// strategy makes these paths under a delta light, so it counts with weight 1, over the
+// probability of having searched its reflection count (`choice`) at a vertex where the strategy
+// ran (`rate`) and of its having been connected (1 / share). `light` is the light as sampled at
+// x_j, `at_y` as seen from the entry; `reflected(F_r)` is the share of the light its reflections
+// keep, given the entry's Fresnel reflectance. Unless nothing can block it (`clear`), every
+// segment inside is traced, ending just inside the boundary at inner(b) for its reflection b
+// (-1: the entry).
+template <typename Chain, typename Reflected, typename Inner>
+void connect_chain(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                   const MediumInfo& m, const DielectricParams& interface, const Chain& chain,
+                   const LightSample& light, const LightSample& at_y, const ChainChoice& choice,
+                   double share, float rate, bool clear, const Reflected& reflected,
+                   const Inner& inner, ShadowQueue& shadow, KernelCounters& counters) {
+  const Vec3 x_j = state.vertex_j(slot);
+  const double cos_l = dot(chain.n, at_y.wi);
+  if (!(at_y.pdf > 0) || !(cos_l > 0)) return;
+  const double reflectance = fresnel_dielectric(static_cast<float>(cos_l), interface.eta);
+  const double scale =
+      share *
+      hg_phase(dot(state.direction_in_j(slot), -chain.omega_last), m.medium.asymmetry(x_j)) *
+      (1.0 - reflectance) * reflected(reflectance) * cos_l /
+      (chain.jacobian * light.pdf * choice.probability * rate);
+  // The chain bends at its reflections; in a homogeneous medium (the manifold strategy's
+  // premise) its transmittance is that of its total length.
+  const Rgb unweighted =
+      state.throughput(slot) * at_y.radiance *
+      m.medium.transmittance(x_j, -chain.omega_last, static_cast<float>(chain.length)) *
+      static_cast<float>(scale);
+  if (is_black(unweighted) || !is_finite(unweighted)) return;
+  const Vec3 outer = chain.y + ctx.epsilon * chain.n;
+  const ShadowRay to_light = shadow_ray_to_light(at_y, chain.y, outer);
+  const uint32_t first =
+      shadow.add_segment(outer, to_light.direction, to_light.t_max, kVisibilityOnly);
+  uint32_t segments = 1;
+  if (!clear) {
+    // From x_j back along the light's path, to the last reflection, then segment by segment
+    // to the entry.
+    Vec3 from = x_j;
+    for (int b = chain.reflections - 1; b >= -1; --b) {
+      const Vec3 to = inner(b);
+      add_visibility_segment(shadow, from, to, 0.0f);
+      from = to;
+    }
+    segments += static_cast<uint32_t>(chain.reflections) + 1;
+  }
+  shadow.add_connection(
+      {ConnectionKind::kManifold, slot, first, segments, -1, unweighted, Rgb(0.0f)});
+  counters.count(SneeCounter::kManifoldReflectionConnections);
+}
+
+// The reflection count a vertex searches chains of (`u`), if any, within the depth limit: the
+// walk would have spent one depth per reflection and one for the exit, so chains stop where the
+// path tracer's depth limit would.
+ChainChoice chain_choice(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                         const MediumInfo& m, float u, int most_reflections) {
+  ChainChoice choice = choose_chain_reflections(u, m.chain_search);
+  const int depth_left = ctx.max_depth - static_cast<int>(state.depth[slot]) - 1;
+  if (choice.reflections > std::min(depth_left, most_reflections)) choice.reflections = 0;
+  return choice;
+}
+
+// The sphere's chains (docs/method.md 3.12). `light_at(y)` is the light as seen from an entry
+// point y (the same light; a point light's direction and irradiance there).
 template <typename LightAt>
 void connect_reflection_chains(const KernelContext& ctx, const PathState& state, uint32_t slot,
                                const MediumInfo& m, const Shape& sphere,
                                const DielectricParams& interface, const LightSample& light,
                                const LightAt& light_at, float u, float rate, ShadowQueue& shadow,
                                KernelCounters& counters) {
-  const ChainChoice choice = choose_chain_reflections(u, m.chain_search);
-  const int depth_left = ctx.max_depth - static_cast<int>(state.depth[slot]) - 1;
-  if (choice.reflections < 1 || choice.reflections > std::min(depth_left, kMaxChainReflections)) {
-    return;
-  }
+  const ChainChoice choice = chain_choice(ctx, state, slot, m, u, kMaxChainReflections);
+  if (choice.reflections < 1) return;
   const Vec3 x_j = state.vertex_j(slot);
   const SphereChains chains =
       std::isinf(light.distance)
@@ -173,8 +228,6 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
                                                   x_j + light.wi * light.distance, x_j,
                                                   choice.reflections);
   counters.count(SneeCounter::kManifoldReflectionDropped, static_cast<uint64_t>(chains.dropped));
-  const Vec3 w_before = state.direction_in_j(slot);
-  const Rgb beta = state.throughput(slot);
   const size_t per_chain =
       m.manifold_interior_clear ? 1 : static_cast<size_t>(choice.reflections) + 2;
   // More chains than the segment budget holds: a run of those that fit, cyclically from a start
@@ -187,44 +240,48 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
   const double share = static_cast<double>(n) / run;
   for (int k = 0; k < run; ++k) {
     const SphereChain& chain = chains.chain[static_cast<size_t>((start + k) % n)];
-    const LightSample at_y = light_at(chain.y);
-    const double cos_l = dot(chain.n, at_y.wi);
-    if (!(at_y.pdf > 0) || !(cos_l > 0)) continue;
     // Every reflection meets the boundary at the refracted angle of the entry, so each
     // reflects the entry's Fresnel reflectance F_r (the same from both sides of the pair).
-    const double reflectance = fresnel_dielectric(static_cast<float>(cos_l), interface.eta);
-    const double scale = share *
-                         hg_phase(dot(w_before, -chain.omega_last), m.medium.asymmetry(x_j)) *
-                         (1.0 - reflectance) * std::pow(reflectance, chain.reflections) * cos_l /
-                         (chain.jacobian * light.pdf * choice.probability * rate);
-    // The chain bends at its reflections; in a homogeneous medium (the manifold strategy's
-    // premise) its transmittance is that of its total length.
-    const Rgb unweighted =
-        beta * at_y.radiance *
-        m.medium.transmittance(x_j, -chain.omega_last, static_cast<float>(chain.length)) *
-        static_cast<float>(scale);
-    if (is_black(unweighted) || !is_finite(unweighted)) continue;
-    const Vec3 outer = chain.y + ctx.epsilon * chain.n;
-    const ShadowRay to_light = shadow_ray_to_light(at_y, chain.y, outer);
-    const uint32_t first =
-        shadow.add_segment(outer, to_light.direction, to_light.t_max, kVisibilityOnly);
-    uint32_t segments = 1;
-    if (!m.manifold_interior_clear) {
-      // Something reaches into the sphere: every chord can be blocked. From x_j back along the
-      // light's path, to the last reflection, then chord by chord to the entry (ends just
-      // inside).
-      const auto inner = [&](Vec3 q) { return q - ctx.epsilon * normalize(q - sphere.center); };
-      Vec3 from = x_j;
-      for (int b = chain.reflections - 1; b >= -1; --b) {
-        const Vec3 to = inner(b >= 0 ? chain.bounce[static_cast<size_t>(b)] : chain.y);
-        add_visibility_segment(shadow, from, to, 0.0f);
-        from = to;
-      }
-      segments += static_cast<uint32_t>(chain.reflections) + 1;
-    }
-    shadow.add_connection(
-        {ConnectionKind::kManifold, slot, first, segments, -1, unweighted, Rgb(0.0f)});
-    counters.count(SneeCounter::kManifoldReflectionConnections);
+    const auto reflected = [&chain](double f) { return std::pow(f, chain.reflections); };
+    const auto inner = [&](int b) {
+      const Vec3 q = b >= 0 ? chain.bounce[static_cast<size_t>(b)] : chain.y;
+      return q - ctx.epsilon * normalize(q - sphere.center);
+    };
+    connect_chain(ctx, state, slot, m, interface, chain, light, light_at(chain.y), choice, share,
+                  rate, m.manifold_interior_clear, reflected, inner, shadow, counters);
+  }
+}
+
+// A mesh's chains under a directional light (docs/method.md 3.14): the tree returns a run of
+// those that fit the segment budget, each standing for found / returned. The mesh itself can
+// block every segment, so all are traced.
+void connect_mesh_chains(const KernelContext& ctx, const PathState& state, uint32_t slot,
+                         const MediumInfo& m, const FacetChainTree& tree,
+                         const DielectricParams& interface, const LightSample& light, float u,
+                         float rate, ShadowQueue& shadow, KernelCounters& counters) {
+  const ChainChoice choice = chain_choice(ctx, state, slot, m, u, kMaxMeshChainReflections);
+  if (choice.reflections < 1) return;
+  if (choice.reflections > tree.reflections_solved()) {
+    counters.count(SneeCounter::kManifoldChainsUnsupported);
+    return;
+  }
+  const int per_chain = choice.reflections + 2;
+  const MeshChains chains =
+      tree.chains_toward(state.vertex_j(slot), choice.reflections,
+                         static_cast<int>(kChainSegmentBudget) / per_chain, choice.leftover);
+  counters.count(SneeCounter::kManifoldReflectionDropped, static_cast<uint64_t>(chains.dropped));
+  if (chains.found > chains.returned) counters.count(SneeCounter::kManifoldExitsSubsampled);
+  const double share = static_cast<double>(chains.found) / std::max(1, chains.returned);
+  for (int k = 0; k < chains.returned; ++k) {
+    const MeshChain& chain = chains.chain[static_cast<size_t>(k)];
+    const auto reflected = [&chain](double) { return chain.reflectance; };
+    const auto inner = [&](int b) {
+      return b >= 0 ? chain.bounce[static_cast<size_t>(b)] -
+                          ctx.epsilon * chain.bounce_normal[static_cast<size_t>(b)]
+                    : chain.y - ctx.epsilon * chain.n;
+    };
+    connect_chain(ctx, state, slot, m, interface, chain, light, light, choice, share, rate, false,
+                  reflected, inner, shadow, counters);
   }
 }
 
@@ -338,7 +395,14 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
     connect_mesh_exits(
         mesh != nullptr ? mesh->exits_toward(x_j) : mesh_for_point->exits_toward(x_j), u_choice,
         connect, counters);
-    if (ctx.snee.reflection_chains) counters.count(SneeCounter::kManifoldChainsUnsupported);
+    if (!ctx.snee.reflection_chains) return;
+    const FacetChainTree* chains = distant ? m.manifold_chain_tree(light.wi) : nullptr;
+    if (chains != nullptr) {
+      connect_mesh_chains(ctx, state, slot, m, *chains, interface, light, u_choice, rate, shadow,
+                          counters);
+    } else {
+      counters.count(SneeCounter::kManifoldChainsUnsupported);
+    }
     return;
   }
   const Shape& sphere = ctx.scene->shapes[boundary];

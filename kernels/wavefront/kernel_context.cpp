@@ -111,9 +111,9 @@ bool nothing_reaches_into(const Scene& s, size_t sphere) {
 }
 
 // A mesh boundary's exit trees for the manifold strategy, one per directional light and one per
-// point or spot light outside it; their size grows with the mesh, so it is checked against the
-// budget before any is built.
-void build_facet_exit_trees(const Scene& s, const Shape& mesh, float eta,
+// point or spot light outside it, and with `chains` a chain tree per directional light; their
+// size grows with the mesh, so it is checked against the budget before any is built.
+void build_facet_exit_trees(const Scene& s, const Shape& mesh, float eta, bool chains,
                             const MemoryBudget& budget, MediumInfo& m) {
   std::vector<int> directional, point;
   for (size_t i = 0; i < s.lights.size(); ++i) {
@@ -144,6 +144,21 @@ void build_facet_exit_trees(const Scene& s, const Shape& mesh, float eta,
   for (const int i : point) point_trees->emplace_back(mesh.mesh, eta, s.lights[i].position, i);
   m.manifold_mesh = std::move(trees);
   m.manifold_mesh_points = std::move(point_trees);
+  if (chains && !directional.empty()) {
+    auto chain_trees = std::make_shared<std::vector<FacetChainTree>>();
+    chain_trees->reserve(directional.size());
+    // The chains are the light's smaller part: each level is built within the budget, and the
+    // levels that do not fit are counted where a vertex would have searched them.
+    for (const int i : directional) {
+      chain_trees->emplace_back(mesh.mesh, eta, s.lights[i].direction, kMaxMeshChainReflections,
+                                budget.bytes);
+    }
+    m.manifold_mesh_chains = std::move(chain_trees);
+    // The search rate of a sphere as large as the mesh's bounding sphere.
+    ShapeBounds box;
+    box.add(mesh);
+    m.chain_search = chain_search_probability(m.medium.sigma_t, 0.5f * length(box.hi - box.lo));
+  }
 }
 
 }  // namespace
@@ -218,7 +233,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                !shape.smooth_shading) {
       if (integ == Integrator::kSnee) {
         m.manifold_boundary = static_cast<int32_t>(i);
-        build_facet_exit_trees(s, shape, info.dielectric.eta, budget, m);
+        build_facet_exit_trees(s, shape, info.dielectric.eta, snee_.reflection_chains, budget, m);
       }
     } else {
       m.manifold_unsupported = true;

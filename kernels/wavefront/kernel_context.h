@@ -16,6 +16,7 @@
 #include "kernels/physics/medium/grid_medium.h"
 #include "kernels/physics/medium/homogeneous_medium.h"
 #include "kernels/physics/snee/manifold_mesh.h"
+#include "kernels/physics/snee/manifold_mesh_chains.h"
 #include "kernels/physics/snee/manifold_mesh_point.h"
 #include "kernels/physics/snee/snee_options.h"
 #include "kernels/wavefront/snee_counters.h"
@@ -107,6 +108,8 @@ struct MediumInfo {
   // only, the one integrator that runs the manifold strategy.
   std::shared_ptr<const std::vector<FacetExitTree>> manifold_mesh = nullptr;
   std::shared_ptr<const std::vector<PointFacetTree>> manifold_mesh_points = nullptr;
+  // Its reflection chains' trees, one per directional light, where chains are on.
+  std::shared_ptr<const std::vector<FacetChainTree>> manifold_mesh_chains = nullptr;
   // Whether the boundary is a smooth dielectric the manifold strategy has no solver for (a
   // smooth-shaded mesh, or several shapes): its single-scattered light under a directional
   // light is missing.
@@ -114,7 +117,7 @@ struct MediumInfo {
   // Whether no other shape reaches into a sphere boundary (no bounding box meets it), so a path
   // inside it cannot be blocked: its reflection chains then need only their light segment.
   bool manifold_interior_clear = false;
-  // How often a vertex searches for reflection chains (chain_search_probability; spheres only).
+  // How often a vertex searches for reflection chains (chain_search_probability).
   double chain_search = 0.0;
 
   // The mesh boundary's exit tree for the directional light along `light` (as LightSample::wi
@@ -122,6 +125,14 @@ struct MediumInfo {
   const FacetExitTree* manifold_tree(Vec3 light) const {
     if (!manifold_mesh) return nullptr;
     for (const FacetExitTree& tree : *manifold_mesh) {
+      if (tree.light() == light) return &tree;
+    }
+    return nullptr;
+  }
+  // The mesh boundary's chain tree for the directional light along `light`; null if none.
+  const FacetChainTree* manifold_chain_tree(Vec3 light) const {
+    if (!manifold_mesh_chains) return nullptr;
+    for (const FacetChainTree& tree : *manifold_mesh_chains) {
       if (tree.light() == light) return &tree;
     }
     return nullptr;

@@ -32,16 +32,16 @@ enum class SneeCounter : int {
   // solver for (a smooth-shaded mesh, several shapes; a point or spot light behind a mesh or
   // inside the sphere): their light through one refraction is not rendered.
   kManifoldUnsupportedBoundary,
-  // Manifold connections along chains of internal reflections (docs/method.md 3.12), one per
-  // chain connected, and chains found but not connected: beyond the solutions kept for one
-  // reflection count (none in tests).
+  // Manifold connections along chains of internal reflections (docs/method.md 3.12, 3.14), one
+  // per chain connected, and chains found but not connected: beyond the solutions one query
+  // keeps (none in tests).
   kManifoldReflectionConnections,
   kManifoldReflectionDropped,
-  // Mesh boundaries (docs/method.md 3.13): medium vertices whose reflection-last light is not
-  // searched (chains are solved on spheres only); vertices that saw the light through more
-  // facets, or along more sphere chains, than their shadow segments can connect, and connected
-  // a random run of them (unbiased); exit points beyond what one query returns (none seen in
-  // tests), not connected.
+  // Mesh boundaries (docs/method.md 3.13, 3.14): medium vertices whose reflection-last light is
+  // not searched (a point or spot light, or more reflections than the mesh's chain tree holds);
+  // vertices that saw the light through more facets, or along more chains, than their shadow
+  // segments can connect, and connected a random run of them (unbiased); exit points beyond
+  // what one query returns (none seen in tests), not connected.
   kManifoldChainsUnsupported,
   kManifoldExitsSubsampled,
   kManifoldExitsDropped,

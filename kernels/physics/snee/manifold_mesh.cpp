@@ -100,14 +100,7 @@ uint32_t FacetExitTree::build(uint32_t first, uint32_t count) {
     lo = {std::min(lo.x, c.x), std::min(lo.y, c.y), std::min(lo.z, c.z)};
     hi = {std::max(hi.x, c.x), std::max(hi.y, c.y), std::max(hi.z, c.z)};
   }
-  const Vec3d extent = hi - lo;
-  const int axis =
-      extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-  const auto key = [&centroid, axis](const Facet& f) {
-    const Vec3d c = centroid(f);
-    return axis == 0 ? c.x : (axis == 1 ? c.y : c.z);
-  };
-  const uint32_t half = split_at_median(facets_, first, count, key);
+  const uint32_t half = split_at_median(facets_, first, count, hi - lo, centroid);
   nodes_[index] = node;
   build(first, half);
   nodes_[index].second = build(first + half, count - half);
@@ -129,38 +122,18 @@ MeshExits FacetExitTree::exits_toward(Vec3 x_in) const {
     const double high = lateral.hi + (tilt.hi >= 0 ? dh_hi : dh_lo) * tilt.hi;
     return x_lateral >= low && x_lateral <= high;
   };
-  uint32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const uint32_t index = stack[--top];
-    const Node& node = nodes_[index];
-    if (!(xb.z > node.h.lo)) continue;
+  const auto opens = [&](const Node& node) {
+    if (!(xb.z > node.h.lo)) return false;
     const double dh_lo = std::max(0.0, xb.z - node.h.hi), dh_hi = xb.z - node.h.lo;
-    if (!reaches(xb.x, node.a, node.tilt_a, dh_lo, dh_hi) ||
-        !reaches(xb.y, node.b, node.tilt_b, dh_lo, dh_hi)) {
-      continue;
-    }
-    if (node.count == 0) {
-      stack[top++] = node.second;
-      stack[top++] = index + 1;
-      continue;
-    }
+    return reaches(xb.x, node.a, node.tilt_a, dh_lo, dh_hi) &&
+           reaches(xb.y, node.b, node.tilt_b, dh_lo, dh_hi);
+  };
+  walk_tree(nodes_, opens, [&](const Node& node) {
     for (uint32_t i = node.first; i < node.first + node.count; ++i) {
       const Facet& f = facets_[i];
-      // Where the ray from x against the beam meets the facet's plane (Moller-Trumbore).
-      const Vec3d back = -Vec3d(f.omega_r), e1(f.e1), e2(f.e2);
-      const Vec3d p = cross(back, e2);
-      const double det = dot(e1, p);
-      if (!(std::abs(det) > 0)) continue;
-      const Vec3d to_x = x - Vec3d(f.p0);
-      const double u = dot(to_x, p) / det;
-      if (u < 0 || u > 1) continue;
-      const Vec3d q = cross(to_x, e1);
-      const double v = dot(back, q) / det;
-      if (v < 0 || u + v > 1) continue;
-      const double t = dot(e2, q) / det;
-      if (!(t > 0)) continue;
+      const Vec3d e1(f.e1), e2(f.e2);
+      double u = 0, v = 0, t = 0;
+      if (!meets_backwards(Vec3d(f.p0), e1, e2, x, Vec3d(f.omega_r), &u, &v, &t)) continue;
       if (out.count == kMaxMeshExits) {
         ++out.dropped;
         continue;
@@ -168,7 +141,7 @@ MeshExits FacetExitTree::exits_toward(Vec3 x_in) const {
       const Vec3d y = Vec3d(f.p0) + u * e1 + v * e2;
       out.exit[static_cast<size_t>(out.count++)] = {Vec3(y), f.n, f.omega_r, length(x - y)};
     }
-  }
+  });
   return out;
 }
 

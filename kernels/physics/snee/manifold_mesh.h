@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -58,16 +59,63 @@ void for_each_facet(const TriangleMesh& mesh, const F& f) {
   }
 }
 
-// Both facet trees split a node at the median: reorders facets[first, first + count) so that
-// the lower half by key(facet) comes first, and returns that half's size.
-template <class Facet, class Key>
-uint32_t split_at_median(std::vector<Facet>& facets, uint32_t first, uint32_t count,
-                         const Key& key) {
+// The facet trees split a node at the median along the widest axis of its `extent`: reorders
+// items[first, first + count) so that the lower half by that coordinate of position(item) comes
+// first, and returns that half's size.
+template <class Item, class Position>
+uint32_t split_at_median(std::vector<Item>& items, uint32_t first, uint32_t count,
+                         const Vec3d& extent, const Position& position) {
+  const int axis =
+      extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  const auto key = [&position, axis](const Item& item) {
+    const auto c = position(item);
+    return axis == 0 ? c.x : (axis == 1 ? c.y : c.z);
+  };
   const uint32_t half = count / 2;
-  std::nth_element(facets.begin() + first, facets.begin() + first + half,
-                   facets.begin() + first + count,
-                   [&key](const Facet& a, const Facet& b) { return key(a) < key(b); });
+  std::nth_element(items.begin() + first, items.begin() + first + half,
+                   items.begin() + first + count,
+                   [&key](const Item& a, const Item& b) { return key(a) < key(b); });
   return half;
+}
+
+// Where the ray from `from` against `direction` meets the triangle p0 + u e1 + v e2
+// (Moller-Trumbore): false where it misses it or meets it behind, else its u, v and distance t.
+inline bool meets_backwards(const Vec3d& p0, const Vec3d& e1, const Vec3d& e2, const Vec3d& from,
+                            const Vec3d& direction, double* u, double* v, double* t) {
+  const Vec3d back = -direction;
+  const Vec3d p = cross(back, e2);
+  const double det = dot(e1, p);
+  if (!(std::abs(det) > 0)) return false;
+  const Vec3d to_from = from - p0;
+  *u = dot(to_from, p) / det;
+  if (*u < 0 || *u > 1) return false;
+  const Vec3d q = cross(to_from, e1);
+  *v = dot(back, q) / det;
+  if (*v < 0 || *u + *v > 1) return false;
+  *t = dot(e2, q) / det;
+  return *t > 0;
+}
+
+// The facet trees' depth-first walk: each stores a node's first child right after it and the
+// second at node.second (count 0), or a leaf's items (count > 0). Goes into the nodes for which
+// opens(node) holds and calls leaf(node) on each leaf reached, first children first.
+template <class Node, class Opens, class Leaf>
+void walk_tree(const std::vector<Node>& nodes, const Opens& opens, const Leaf& leaf) {
+  if (nodes.empty()) return;
+  uint32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const uint32_t index = stack[--top];
+    const Node& node = nodes[index];
+    if (!opens(node)) continue;
+    if (node.count == 0) {
+      stack[top++] = node.second;
+      stack[top++] = index + 1;
+      continue;
+    }
+    leaf(node);
+  }
 }
 
 class FacetExitTree {

@@ -11,15 +11,7 @@ namespace snee {
 
 namespace {
 
-// Widening of every cone and ball, so that rounding in float storage never closes a node that
-// holds a solution: relative to the scene's coordinates for balls, in radians for cones.
-constexpr double kRelativeSlack = 1e-5;
-constexpr double kAngleSlack = 1e-5;
 constexpr double kPiD = std::numbers::pi;
-
-double angle_between(const Vec3d& a, const Vec3d& b) {
-  return std::acos(std::clamp(dot(a, b), -1.0, 1.0));
-}
 
 }  // namespace
 
@@ -44,6 +36,7 @@ PointFacetTree::PointFacetTree(const TriangleMesh& mesh, float eta, Vec3 light_p
   const Vec3d l(light_position);
   // Reserved in full so the memory is what bytes_at_most promised, not a doubling past it.
   facets_.reserve(mesh.triangle_count());
+  std::vector<BallConeTree::Bounds> bounds;
   // Each facet's cone. The light's directions toward a facet fill the spherical triangle of its
   // corners' directions, inside the cone around their mean that reaches the farthest corner.
   // Refraction into a denser inside maps directions with a Jacobian whose singular values are e
@@ -51,78 +44,26 @@ PointFacetTree::PointFacetTree(const TriangleMesh& mesh, float eta, Vec3 light_p
   // within e times that angle of the mean's refraction.
   for_each_facet(mesh, [&](const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3d& n) {
     if (!(dot(n, l - Vec3d(p0)) > 0)) return;
-    Facet f{p0, p1 - p0, p2 - p0, Vec3(n), {}, 0};
+    const Facet f{p0, p1 - p0, p2 - p0, Vec3(n)};
+    BallConeTree::Bounds b;
+    for (const Vec3& p : {f.p0, f.p0 + f.e1, f.p0 + f.e2}) b.add(Vec3d(p));
+    b.centroid = f.p0 + (f.e1 + f.e2) / 3.0f;
     const Vec3d d0 = normalize(Vec3d(f.p0) - l), d1 = normalize(Vec3d(f.p0 + f.e1) - l),
                 d2 = normalize(Vec3d(f.p0 + f.e2) - l);
     const Vec3d mean = normalize(d0 + d1 + d2);
-    f.axis = refracted_inward(Vec3d(f.n), -mean, 1.0 / e_);
-    f.spread =
-        e_ * std::max({angle_between(mean, d0), angle_between(mean, d1), angle_between(mean, d2)});
+    b.axis = refracted_inward(Vec3d(f.n), -mean, 1.0 / e_);
+    b.spread =
+        e_ * std::max({BallConeTree::angle_between(mean, d0), BallConeTree::angle_between(mean, d1),
+                       BallConeTree::angle_between(mean, d2)});
     facets_.push_back(f);
+    bounds.push_back(b);
   });
-  if (!facets_.empty()) {
-    nodes_.reserve(2 * facets_.size() + 1);
-    build(0, static_cast<uint32_t>(facets_.size()));
-  }
+  tree_ = BallConeTree(std::move(bounds));
 }
 
 uint64_t PointFacetTree::bytes_at_most(uint64_t triangles) {
-  const uint64_t nodes = saturating_add(saturating_multiply(2, triangles), 1);
   return saturating_add(saturating_multiply(triangles, sizeof(Facet)),
-                        saturating_multiply(nodes, sizeof(Node)));
-}
-
-uint32_t PointFacetTree::build(uint32_t first, uint32_t count) {
-  const uint32_t index = static_cast<uint32_t>(nodes_.size());
-  nodes_.emplace_back();
-  // The ball: around the vertices' bounding box.
-  Vec3d lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
-  double scale = 0;
-  for (uint32_t i = first; i < first + count; ++i) {
-    const Facet& f = facets_[i];
-    for (const Vec3& p : {f.p0, f.p0 + f.e1, f.p0 + f.e2}) {
-      const Vec3d q(p);
-      lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
-      hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
-      scale = std::max({scale, std::abs(q.x), std::abs(q.y), std::abs(q.z)});
-    }
-  }
-  Node node;
-  node.centre = Vec3(0.5 * (lo + hi));
-  node.radius = static_cast<float>(0.5 * length(hi - lo) + kRelativeSlack * scale);
-  // The cone: around the mean of its facets' cone axes, covering each facet's cone.
-  Vec3d sum{};
-  for (uint32_t i = first; i < first + count; ++i) sum = sum + facets_[i].axis;
-  double half_angle = kPiD;
-  Vec3d axis(0, 0, 1);
-  if (length(sum) > 1e-9) {
-    axis = normalize(sum);
-    half_angle = 0;
-    for (uint32_t i = first; i < first + count; ++i) {
-      half_angle = std::max(half_angle, angle_between(axis, facets_[i].axis) + facets_[i].spread);
-    }
-  }
-  node.axis = Vec3(axis);
-  node.half_angle = static_cast<float>(std::min(kPiD, half_angle + kAngleSlack));
-  if (count <= 1) {
-    node.first = first;
-    node.count = count;
-    nodes_[index] = node;
-    return index;
-  }
-  // Split at the median of the centroids along the box's widest axis.
-  const Vec3d extent = hi - lo;
-  const int axis_index =
-      extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-  const auto key = [axis_index](const Facet& f) {
-    const Vec3 c = f.p0 + (f.e1 + f.e2) / 3.0f;
-    return axis_index == 0 ? c.x : (axis_index == 1 ? c.y : c.z);
-  };
-  const uint32_t half = split_at_median(facets_, first, count, key);
-  nodes_[index] = node;
-  build(first, half);
-  nodes_[index].second = build(first + half, count - half);
-  return index;
+                        BallConeTree::bytes_at_most(triangles));
 }
 
 bool PointFacetTree::solve(const Facet& f, const Vec3d& x, MeshExit* exit) const {
@@ -162,38 +103,16 @@ bool PointFacetTree::solve(const Facet& f, const Vec3d& x, MeshExit* exit) const
 
 MeshExits PointFacetTree::exits_toward(Vec3 x_in) const {
   MeshExits out;
-  if (nodes_.empty()) return out;
   const Vec3d x(x_in);
-  uint32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const uint32_t index = stack[--top];
-    const Node& node = nodes_[index];
-    // A ray from a point of the ball along a direction of the cone reaches x only if the
-    // directions from the ball to x (within asin(radius / distance) of the centre's) meet the
-    // cone.
-    const Vec3d to_x = x - Vec3d(node.centre);
-    const double distance = length(to_x);
-    if (distance > node.radius) {
-      const double seen = std::asin(std::min(1.0, node.radius / distance));
-      if (angle_between(to_x / distance, Vec3d(node.axis)) > node.half_angle + seen) continue;
+  tree_.for_each_candidate(x, [&](uint32_t i) {
+    MeshExit exit;
+    if (!solve(facets_[i], x, &exit)) return;
+    if (out.count == kMaxMeshExits) {
+      ++out.dropped;
+      return;
     }
-    if (node.count == 0) {
-      stack[top++] = node.second;
-      stack[top++] = index + 1;
-      continue;
-    }
-    for (uint32_t i = node.first; i < node.first + node.count; ++i) {
-      MeshExit exit;
-      if (!solve(facets_[i], x, &exit)) continue;
-      if (out.count == kMaxMeshExits) {
-        ++out.dropped;
-        continue;
-      }
-      out.exit[static_cast<size_t>(out.count++)] = exit;
-    }
-  }
+    out.exit[static_cast<size_t>(out.count++)] = exit;
+  });
   return out;
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/math.h"
 #include "core/vec3d.h"
+#include "kernels/physics/snee/ball_cone_tree.h"
 #include "kernels/physics/snee/manifold_mesh.h"
 #include "scene/scene.h"
 
@@ -39,18 +40,7 @@ class PointFacetTree {
   struct Facet {
     Vec3 p0, e1, e2;  // corner and edges
     Vec3 n;           // outward unit normal
-    Vec3d axis;       // a cone around the refracted directions of its points (build)
-    double spread = 0;
   };
-  struct Node {
-    Vec3 centre;  // a ball around the facets' vertices
-    float radius = 0;
-    Vec3 axis;  // a cone around the refracted directions of every point of the facets
-    float half_angle = 0;
-    uint32_t first = 0, count = 0;  // facets of a leaf; count 0: children at index + 1, second
-    uint32_t second = 0;
-  };
-  uint32_t build(uint32_t first, uint32_t count);
   // The facet's exit point toward x, if it has one.
   bool solve(const Facet& f, const Vec3d& x, MeshExit* exit) const;
 
@@ -58,7 +48,7 @@ class PointFacetTree {
   int light_ = -1;
   double e_ = 1.0;  // outside / inside index
   std::vector<Facet> facets_;
-  std::vector<Node> nodes_;
+  BallConeTree tree_;  // over facets_, with cones around their refracted directions
 };
 
 // Whether a point light at light_position can be solved for behind `mesh` with relative index

@@ -1,0 +1,108 @@
+// The manifold strategy's reflection chains behind a closed, flat-shaded triangle mesh under a
+// directional light (docs/method.md 3.14): light refracted in through one facet and reflected
+// specularly inside by one or more others before it reaches an interior point x. On flat
+// facets every beam stays parallel: the light entering through a facet is one beam, and its
+// reflection off a facet is again one beam, leaving the part of that facet the incoming beam
+// covers (a convex fragment). The fragments are enumerated once per light, level by level (one
+// reflection more each), by clipping each beam against the facets ahead of it; a query then
+// finds the fragments whose beam passes through x with a ball-and-cone tree per level, and
+// traces each back, facet by facet, to its entry point. Which facets block a beam is left to
+// the caller's rays, so the enumeration is exact without hidden-surface removal.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/math.h"
+#include "core/vec3d.h"
+#include "kernels/physics/snee/ball_cone_tree.h"
+#include "scene/scene.h"
+
+namespace snee {
+
+// Most reflections a mesh chain may have: each level holds more fragments than the last (each
+// beam splits over the facets ahead of it), so the levels are few.
+inline constexpr int kMaxMeshChainReflections = 4;
+// Fragments a level may hold per triangle of the mesh (measured on the bunny: 3.6, 10.4, 22.7
+// and 41.5 for one to four reflections); a level that would hold more, or more than the memory
+// budget allows one level, is not built (nor any above it), and its chains are counted as
+// unsupported.
+inline constexpr uint64_t kMeshChainFragmentsPerTriangle = 64;
+// Most chains one query finds (more are counted as dropped). Near a caustic, where the beams of
+// many facet pairs focus, a point inside an icosphere sees hundreds.
+inline constexpr int kMaxMeshChainsFound = 4096;
+// Most chains one query returns in full: a run of the chains found (the caller connects each
+// with its share of them).
+inline constexpr int kMaxMeshChainsReturned = 16;
+
+// The light entering at y, reflected at bounce[0], bounce[1], ... (in the light's order), that
+// reaches x on its last segment.
+struct MeshChain {
+  int reflections = 0;
+  Vec3 y;  // where the light refracts in
+  Vec3 n;  // the entry facet's outward normal
+  std::array<Vec3, kMaxMeshChainReflections> bounce{};
+  std::array<Vec3, kMaxMeshChainReflections> bounce_normal{};  // outward normals there
+  Vec3 omega_last;         // unit propagation direction on the last segment (toward x)
+  double length = 0;       // path length inside, y to x
+  double reflectance = 1;  // the product of the reflections' Fresnel reflectances
+  double jacobian = 0;     // dV(x) / (dA(y) dt) = |n . omega_r| at the entry (beams stay parallel)
+};
+
+struct MeshChains {
+  std::array<MeshChain, kMaxMeshChainsReturned> chain{};  // the run returned
+  int returned = 0;
+  int found = 0;    // all the chains found, each in the run with probability returned / found
+  int dropped = 0;  // solutions beyond kMaxMeshChainsFound
+};
+
+class FacetChainTree {
+ public:
+  // The chains of `mesh` (world space, outward winding, relative index eta = inside / outside)
+  // under the directional light along `light` (unit, toward it), up to `max_reflections`
+  // reflections (at most kMaxMeshChainReflections), each level within `bytes_per_level` (what
+  // it holds and what building it takes).
+  FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, int max_reflections,
+                 uint64_t bytes_per_level = ~uint64_t{0});
+  // What one fragment costs a level, kept and while it is built.
+  static uint64_t bytes_per_fragment();
+
+  Vec3 light() const { return light_; }
+  // Reflection counts it has every chain of: 1 to this.
+  int reflections_solved() const { return static_cast<int>(trees_.size()); }
+  // Fragments at each reflection count (statistics for the docs and tests).
+  uint64_t fragments(int reflections) const;
+
+  // The chains with exactly `reflections` reflections whose last beam passes through x (which
+  // should lie inside): all are counted, and a run of at most `run` of them (at most
+  // kMaxMeshChainsReturned) is returned, cyclically from the one a uniform u in [0, 1) picks,
+  // so that each is returned with probability returned / found. Whether each segment is
+  // unblocked, and the light reaches y, is for the caller's rays to decide. None where
+  // `reflections` is not solved.
+  MeshChains chains_toward(Vec3 x, int reflections, int run, double u) const;
+
+ private:
+  struct Facet {
+    Vec3d p0, e1, e2;  // corner and edges
+    Vec3d n;           // outward unit normal
+  };
+  // A beam leaving a facet: the light refracted in (level 0) or reflected (above).
+  struct Beam {
+    uint32_t facet = 0;
+    uint32_t parent = 0;  // the beam it reflects, one level down
+    Vec3d direction;      // unit propagation direction after the facet
+    double reflectance = 1;
+  };
+  // The chain whose last beam is levels_[reflections][beam], traced back from x; false if the
+  // beam, or one below it, misses its facet.
+  bool trace_back(const Vec3d& x, int reflections, uint32_t beam, MeshChain* chain) const;
+
+  Vec3 light_;
+  double eta_ = 1;
+  std::vector<Facet> facets_;
+  std::vector<std::vector<Beam>> levels_;  // levels_[k]: beams after k reflections
+  std::vector<BallConeTree> trees_;        // trees_[k - 1] over levels_[k]
+};
+
+}  // namespace snee
