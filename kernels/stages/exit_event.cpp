@@ -147,20 +147,21 @@ void connect_exit_emission(const KernelContext& ctx, const PathState& state, uin
 namespace {
 
 // One reflection chain of the manifold strategy (docs/method.md 3.12, 3.14): the light
-// refracted in at chain.y and reflected specularly inside before it reaches x_j. No other
-// strategy makes these paths under a delta light, so it counts with weight 1, over the
-// probability of having searched its reflection count (`choice`) at a vertex where the strategy
-// ran (`rate`) and of its having been connected (1 / share). `light` is the light as sampled at
-// x_j, `at_y` as seen from the entry; `reflected(F_r)` is the share of the light its reflections
-// keep, given the entry's Fresnel reflectance. Unless nothing can block it (`clear`), every
-// segment inside is traced, ending just inside the boundary at inner(b) for its reflection b
-// (-1: the entry).
-template <typename Chain, typename Reflected, typename Inner>
+// refracted in at chain.y and reflected specularly inside (or, in a mesh, crossing out and in
+// again) before it reaches x_j. No other strategy makes these paths under a delta light, so it
+// counts with weight 1, over the probability of having searched its reflection count (`choice`)
+// at a vertex where the strategy ran (`rate`) and of its having been connected (1 / share).
+// `light` is the light as sampled at x_j, `at_y` as seen from the entry; `fresnel(F_r)` is the
+// share of the light its reflections and crossings keep, given the entry's Fresnel
+// reflectance; add_path_segments(shadow) queues the segments between x_j and the entry that
+// can be blocked and returns how many.
+template <typename Chain, typename Fresnel, typename AddPathSegments>
 void connect_chain(const KernelContext& ctx, const PathState& state, uint32_t slot,
                    const MediumInfo& m, const DielectricParams& interface, const Chain& chain,
                    const LightSample& light, const LightSample& at_y, const ChainChoice& choice,
-                   double share, float rate, bool clear, const Reflected& reflected,
-                   const Inner& inner, ShadowQueue& shadow, KernelCounters& counters) {
+                   double share, float rate, const Fresnel& fresnel,
+                   const AddPathSegments& add_path_segments, ShadowQueue& shadow,
+                   KernelCounters& counters) {
   const Vec3 x_j = state.vertex_j(slot);
   const double cos_l = dot(chain.n, at_y.wi);
   if (!(at_y.pdf > 0) || !(cos_l > 0)) return;
@@ -168,10 +169,10 @@ void connect_chain(const KernelContext& ctx, const PathState& state, uint32_t sl
   const double scale =
       share *
       hg_phase(dot(state.direction_in_j(slot), -chain.omega_last), m.medium.asymmetry(x_j)) *
-      (1.0 - reflectance) * reflected(reflectance) * cos_l /
+      (1.0 - reflectance) * fresnel(reflectance) * cos_l /
       (chain.jacobian * light.pdf * choice.probability * rate);
   // The chain bends at its reflections; in a homogeneous medium (the manifold strategy's
-  // premise) its transmittance is that of its total length.
+  // premise) its transmittance is that of its total length inside.
   const Rgb unweighted =
       state.throughput(slot) * at_y.radiance *
       m.medium.transmittance(x_j, -chain.omega_last, static_cast<float>(chain.length)) *
@@ -181,18 +182,7 @@ void connect_chain(const KernelContext& ctx, const PathState& state, uint32_t sl
   const ShadowRay to_light = shadow_ray_to_light(at_y, chain.y, outer);
   const uint32_t first =
       shadow.add_segment(outer, to_light.direction, to_light.t_max, kVisibilityOnly);
-  uint32_t segments = 1;
-  if (!clear) {
-    // From x_j back along the light's path, to the last reflection, then segment by segment
-    // to the entry.
-    Vec3 from = x_j;
-    for (int b = chain.reflections - 1; b >= -1; --b) {
-      const Vec3 to = inner(b);
-      add_visibility_segment(shadow, from, to, 0.0f);
-      from = to;
-    }
-    segments += static_cast<uint32_t>(chain.reflections) + 1;
-  }
+  const uint32_t segments = 1 + add_path_segments(shadow);
   shadow.add_connection(
       {ConnectionKind::kManifold, slot, first, segments, -1, unweighted, Rgb(0.0f)});
   counters.count(SneeCounter::kManifoldReflectionConnections);
@@ -243,12 +233,22 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
     // Every reflection meets the boundary at the refracted angle of the entry, so each
     // reflects the entry's Fresnel reflectance F_r (the same from both sides of the pair).
     const auto reflected = [&chain](double f) { return std::pow(f, chain.reflections); };
-    const auto inner = [&](int b) {
-      const Vec3 q = b >= 0 ? chain.bounce[static_cast<size_t>(b)] : chain.y;
-      return q - ctx.epsilon * normalize(q - sphere.center);
+    // Unless nothing else reaches into the sphere, every chord can be blocked: from x_j back
+    // along the light's path, to the last reflection, then chord by chord to the entry (each
+    // ending just inside).
+    const auto add_chords = [&](ShadowQueue& queue) -> uint32_t {
+      if (m.manifold_interior_clear) return 0;
+      Vec3 from = x_j;
+      for (int b = chain.reflections - 1; b >= -1; --b) {
+        const Vec3 q = b >= 0 ? chain.bounce[static_cast<size_t>(b)] : chain.y;
+        const Vec3 to = q - ctx.epsilon * normalize(q - sphere.center);
+        add_visibility_segment(queue, from, to, 0.0f);
+        from = to;
+      }
+      return static_cast<uint32_t>(chain.reflections) + 1;
     };
     connect_chain(ctx, state, slot, m, interface, chain, light, light_at(chain.y), choice, share,
-                  rate, m.manifold_interior_clear, reflected, inner, shadow, counters);
+                  rate, reflected, add_chords, shadow, counters);
   }
 }
 
@@ -265,23 +265,42 @@ void connect_mesh_chains(const KernelContext& ctx, const PathState& state, uint3
     counters.count(SneeCounter::kManifoldChainsUnsupported);
     return;
   }
-  const int per_chain = choice.reflections + 2;
-  const MeshChains chains =
-      tree.chains_toward(state.vertex_j(slot), choice.reflections,
-                         static_cast<int>(kChainSegmentBudget) / per_chain, choice.leftover);
+  // A crossing needs one segment more than a reflection.
+  const int per_chain = 2 * choice.reflections + 2;
+  const Vec3 x_j = state.vertex_j(slot);
+  const MeshChains chains = tree.chains_toward(
+      x_j, choice.reflections, static_cast<int>(kChainSegmentBudget) / per_chain, choice.leftover);
   counters.count(SneeCounter::kManifoldReflectionDropped, static_cast<uint64_t>(chains.dropped));
   if (chains.found > chains.returned) counters.count(SneeCounter::kManifoldExitsSubsampled);
   const double share = static_cast<double>(chains.found) / std::max(1, chains.returned);
+  const int depth_left = ctx.max_depth - static_cast<int>(state.depth[slot]) - 1;
   for (int k = 0; k < chains.returned; ++k) {
     const MeshChain& chain = chains.chain[static_cast<size_t>(k)];
-    const auto reflected = [&chain](double) { return chain.reflectance; };
-    const auto inner = [&](int b) {
-      return b >= 0 ? chain.bounce[static_cast<size_t>(b)] -
-                          ctx.epsilon * chain.bounce_normal[static_cast<size_t>(b)]
-                    : chain.y - ctx.epsilon * chain.n;
+    // A crossing spends two depths (out and in again).
+    if (chain.events > depth_left) continue;
+    const auto fresnel = [&chain](double) { return chain.fresnel; };
+    // The mesh itself can block every stretch: from x_j back along the light's path, point by
+    // point to the entry, each stretch ending just off the boundary on its own side (outside
+    // where the light crossed out of the mesh).
+    const auto add_stretches = [&](ShadowQueue& queue) -> uint32_t {
+      Vec3 from = x_j;
+      for (int b = chain.events - 1; b >= -1; --b) {
+        const bool outside = b >= 0 && chain.leaves[static_cast<size_t>(b)];
+        const Vec3 q = b >= 0 ? chain.point[static_cast<size_t>(b)] : chain.y;
+        const Vec3 n = b >= 0 ? chain.normal[static_cast<size_t>(b)] : chain.n;
+        if (outside) {
+          // `from` lies just inside the point where the light came back in; start just outside.
+          const Vec3 back_in = chain.point[static_cast<size_t>(b + 1)];
+          from = back_in + ctx.epsilon * chain.normal[static_cast<size_t>(b + 1)];
+        }
+        const Vec3 to = q + (outside ? ctx.epsilon : -ctx.epsilon) * n;
+        add_visibility_segment(queue, from, to, 0.0f);
+        from = outside ? q - ctx.epsilon * n : to;
+      }
+      return static_cast<uint32_t>(chain.events) + 1;
     };
-    connect_chain(ctx, state, slot, m, interface, chain, light, light, choice, share, rate, false,
-                  reflected, inner, shadow, counters);
+    connect_chain(ctx, state, slot, m, interface, chain, light, light, choice, share, rate, fresnel,
+                  add_stretches, shadow, counters);
   }
 }
 

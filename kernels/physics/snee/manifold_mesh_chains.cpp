@@ -191,7 +191,8 @@ FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, 
   for (uint32_t f = 0; f < facets_.size(); ++f) {
     const Vec3d omega_r = refracted_inward(facets_[f].n, l, eta);
     if (!(length(omega_r) > 0)) continue;
-    levels_[0].push_back({f, 0, omega_r, 1.0});
+    levels_[0].push_back(
+        {f, 0, omega_r, 1.0, std::abs(dot(facets_[f].n, omega_r)), kNoFacet, Vec3d{}});
     Polygon triangle;
     for (const Vec3d& p : corners[f]) triangle.corner[static_cast<size_t>(triangle.count++)] = p;
     region.add(triangle);
@@ -206,33 +207,68 @@ FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, 
       const Beam& beam = below[i];
       const Vec3d& d = beam.direction;
       const Polygon source = region[i];
-      boxes.for_each_candidate(source, d, [&](uint32_t g) {
-        const Facet& f = facets_[g];
-        const double cos_out = dot(d, f.n);
-        if (too_many || !(cos_out > 0)) return;
-        // The part of the beam's cross-section behind g's plane, carried along d onto it, then
-        // cut to the triangle (its edges' inward normals lie in the plane).
-        Polygon part = clip(source, -f.n, -dot(f.n, f.p0));
-        if (part.count < 3) return;
+      // A beam's cross-section cut to where it lands on facet f along `along`: the part on the
+      // side of f's plane it comes from (`side` = +1 outside, -1 inside), carried onto the
+      // plane and cut to the triangle (its edges' inward normals lie in the plane); empty if
+      // nothing is left.
+      const auto land = [](const Polygon& from, const Facet& f, const Vec3d& along, double side) {
+        Polygon part = clip(from, side * f.n, side * dot(f.n, f.p0));
+        if (part.count < 3) return Polygon{};
+        const double cos_along = dot(along, f.n);
         for (int c = 0; c < part.count; ++c) {
           Vec3d& p = part.corner[static_cast<size_t>(c)];
-          p = p + (dot(f.p0 - p, f.n) / cos_out) * d;
+          p = p + (dot(f.p0 - p, f.n) / cos_along) * along;
         }
         const Vec3d c0 = f.p0, c1 = f.p0 + f.e1, c2 = f.p0 + f.e2;
-        for (const auto& [from, to] : {std::pair{c0, c1}, std::pair{c1, c2}, std::pair{c2, c0}}) {
-          const Vec3d inward = cross(f.n, to - from);
-          part = clip(part, inward, dot(inward, from));
-          if (part.count < 3) return;
+        for (const auto& [a, b] : {std::pair{c0, c1}, std::pair{c1, c2}, std::pair{c2, c0}}) {
+          const Vec3d inward = cross(f.n, b - a);
+          part = clip(part, inward, dot(inward, a));
+          if (part.count < 3) return Polygon{};
         }
-        if (!(polygon_area(part) > kSmallestFragment * 0.5 * length(cross(f.e1, f.e2)))) return;
+        if (!(polygon_area(part) > kSmallestFragment * 0.5 * length(cross(f.e1, f.e2)))) {
+          return Polygon{};
+        }
+        return part;
+      };
+      const auto keep = [&](const Beam& next, const Polygon& part) {
         if (beams.size() == cap) {
           too_many = true;
           return;
         }
-        const double reflectance =
-            beam.reflectance * fresnel_dielectric(static_cast<float>(cos_out), inverse_eta);
-        beams.push_back({g, i, normalize(d - 2.0 * cos_out * f.n), reflectance});
+        beams.push_back(next);
         next_region.add(part);
+      };
+      boxes.for_each_candidate(source, d, [&](uint32_t g) {
+        const Facet& f = facets_[g];
+        const double cos_out = dot(d, f.n);
+        if (too_many || !(cos_out > 0)) return;
+        const Polygon part = land(source, f, d, -1.0);
+        if (part.count == 0) return;
+        const double reflectance = fresnel_dielectric(static_cast<float>(cos_out), inverse_eta);
+        keep({g, i, normalize(d - 2.0 * cos_out * f.n), beam.fresnel * reflectance, beam.jacobian,
+              kNoFacet, Vec3d{}},
+             part);
+        // The part that leaves: refracted out, it may enter the mesh again through a facet
+        // facing it from outside (the mesh need not be convex).
+        const Vec3d out = refracted_inward(-f.n, -d, 1.0 / eta);
+        if (!(length(out) > 0)) return;
+        // Crossing a flat facet keeps the beam parallel and scales its cross-section by the
+        // ratio of the cosines (dV / (dA(y) dt) with it).
+        const double widening_out = dot(out, f.n) / cos_out;
+        boxes.for_each_candidate(part, out, [&](uint32_t h) {
+          const Facet& e = facets_[h];
+          const double cos_in = -dot(out, e.n);
+          if (too_many || !(cos_in > 0)) return;
+          const Vec3d in = refracted_inward(e.n, -out, eta);
+          if (!(length(in) > 0)) return;
+          const Polygon entered = land(part, e, out, 1.0);
+          if (entered.count == 0) return;
+          const double transmitted =
+              (1.0 - reflectance) * (1.0 - fresnel_dielectric(static_cast<float>(cos_in), eta));
+          keep({h, i, in, beam.fresnel * transmitted,
+                beam.jacobian * widening_out * (-dot(in, e.n) / cos_in), g, out},
+               entered);
+        });
       });
     }
     if (too_many) break;
@@ -270,31 +306,54 @@ uint64_t FacetChainTree::fragments(int reflections) const {
 
 bool FacetChainTree::trace_back(const Vec3d& x, int reflections, uint32_t beam_index,
                                 MeshChain* chain) const {
-  // From x against the last beam to the facet it left, then against the beam that facet
-  // reflected, down to the entry.
+  // From x against the last beam to the facet it left, then (for a crossing) against the
+  // stretch outside to the facet the light left the mesh by, then against the beam below, down
+  // to the entry. The points are found from x backwards and stored in the light's order.
   const Beam& last = levels_[static_cast<size_t>(reflections)][beam_index];
-  chain->reflections = reflections;
+  chain->levels = reflections;
   chain->omega_last = Vec3(last.direction);
-  chain->reflectance = last.reflectance;
+  chain->fresnel = last.fresnel;
+  chain->jacobian = last.jacobian;
   chain->length = 0;
+  std::array<Vec3d, kMaxMeshChainEvents> points;
+  std::array<uint32_t, kMaxMeshChainEvents> facets;
+  std::array<bool, kMaxMeshChainEvents> leaves;
+  int found = 0;
   Vec3d at = x;
   uint32_t index = beam_index;
+  const auto back = [&](uint32_t facet, const Vec3d& direction, bool inside) {
+    const Facet& f = facets_[facet];
+    double u = 0, v = 0, t = 0;
+    if (!meets_backwards(f.p0, f.e1, f.e2, at, direction, &u, &v, &t)) return false;
+    at = at - t * direction;
+    if (inside) chain->length += t;
+    return true;
+  };
   for (int level = reflections; level >= 0; --level) {
     const Beam& beam = levels_[static_cast<size_t>(level)][index];
-    const Facet& f = facets_[beam.facet];
-    double u = 0, v = 0, t = 0;
-    if (!meets_backwards(f.p0, f.e1, f.e2, at, beam.direction, &u, &v, &t)) return false;
-    at = at - t * beam.direction;
-    chain->length += t;
-    if (level > 0) {
-      chain->bounce[static_cast<size_t>(level - 1)] = Vec3(at);
-      chain->bounce_normal[static_cast<size_t>(level - 1)] = Vec3(f.n);
-    } else {
+    if (!back(beam.facet, beam.direction, true)) return false;
+    if (level == 0) {
       chain->y = Vec3(at);
-      chain->n = Vec3(f.n);
-      chain->jacobian = std::abs(dot(f.n, beam.direction));
+      chain->n = Vec3(facets_[beam.facet].n);
+      break;
+    }
+    points[static_cast<size_t>(found)] = at;
+    facets[static_cast<size_t>(found)] = beam.facet;
+    leaves[static_cast<size_t>(found++)] = false;
+    if (beam.crossed_from != kNoFacet) {
+      if (!back(beam.crossed_from, beam.outside, false)) return false;
+      points[static_cast<size_t>(found)] = at;
+      facets[static_cast<size_t>(found)] = beam.crossed_from;
+      leaves[static_cast<size_t>(found++)] = true;
     }
     index = beam.parent;
+  }
+  chain->events = found;
+  for (int k = 0; k < found; ++k) {
+    const size_t from = static_cast<size_t>(found - 1 - k);
+    chain->point[static_cast<size_t>(k)] = Vec3(points[from]);
+    chain->normal[static_cast<size_t>(k)] = Vec3(facets_[facets[from]].n);
+    chain->leaves[static_cast<size_t>(k)] = leaves[from];
   }
   return true;
 }

@@ -1,9 +1,10 @@
 // The manifold strategy's reflection chains behind a closed, flat-shaded triangle mesh under a
 // directional light (docs/method.md 3.14): light refracted in through one facet and reflected
-// specularly inside by one or more others before it reaches an interior point x. On flat
-// facets every beam stays parallel: the light entering through a facet is one beam, and its
-// reflection off a facet is again one beam, leaving the part of that facet the incoming beam
-// covers (a convex fragment). The fragments are enumerated once per light, level by level (one
+// specularly inside by one or more others, or crossing out of the mesh and into another part of
+// it, before it reaches an interior point x. On flat facets every beam stays parallel: the
+// light entering through a facet is one beam, and its reflection off a facet, or its refraction
+// out and in again, is again one beam, leaving the part of a facet the incoming beam covers (a
+// convex fragment). The fragments are enumerated once per light, level by level (one
 // reflection more each), by clipping each beam against the facets ahead of it; a query then
 // finds the fragments whose beam passes through x with a ball-and-cone tree per level, and
 // traces each back, facet by facet, to its entry point. Which facets block a beam is left to
@@ -36,18 +37,26 @@ inline constexpr int kMaxMeshChainsFound = 4096;
 // with its share of them).
 inline constexpr int kMaxMeshChainsReturned = 16;
 
-// The light entering at y, reflected at bounce[0], bounce[1], ... (in the light's order), that
-// reaches x on its last segment.
+// Points on the boundary a chain may pass between its entry and x: one per reflection, two per
+// crossing (leaving the mesh and entering it again).
+inline constexpr int kMaxMeshChainEvents = 2 * kMaxMeshChainReflections;
+
+// The light entering at y, then reflected inside or crossing out and back in at point[0],
+// point[1], ... (in the light's order), that reaches x on its last segment.
 struct MeshChain {
-  int reflections = 0;
-  Vec3 y;  // where the light refracts in
-  Vec3 n;  // the entry facet's outward normal
-  std::array<Vec3, kMaxMeshChainReflections> bounce{};
-  std::array<Vec3, kMaxMeshChainReflections> bounce_normal{};  // outward normals there
-  Vec3 omega_last;         // unit propagation direction on the last segment (toward x)
-  double length = 0;       // path length inside, y to x
-  double reflectance = 1;  // the product of the reflections' Fresnel reflectances
-  double jacobian = 0;     // dV(x) / (dA(y) dt) = |n . omega_r| at the entry (beams stay parallel)
+  int levels = 0;  // reflections and crossings
+  int events = 0;  // points between y and x
+  Vec3 y;          // where the light refracts in
+  Vec3 n;          // the entry facet's outward normal
+  std::array<Vec3, kMaxMeshChainEvents> point{};
+  std::array<Vec3, kMaxMeshChainEvents> normal{};  // outward normals there
+  // Whether the light leaves the mesh at point[k] (and travels outside to point[k + 1], where
+  // it enters again); otherwise it reflects there.
+  std::array<bool, kMaxMeshChainEvents> leaves{};
+  Vec3 omega_last;      // unit propagation direction on the last segment (toward x)
+  double length = 0;    // path length inside, y to x (the stretches outside excluded)
+  double fresnel = 1;   // the reflections' reflectances times the crossings' transmittances
+  double jacobian = 0;  // dV(x) / (dA(y) dt): |n . omega_r| at the entry, scaled by each crossing
 };
 
 struct MeshChains {
@@ -74,7 +83,8 @@ class FacetChainTree {
   // Fragments at each reflection count (statistics for the docs and tests).
   uint64_t fragments(int reflections) const;
 
-  // The chains with exactly `reflections` reflections whose last beam passes through x (which
+  // The chains with exactly `reflections` levels (reflections and crossings) whose last beam
+  // passes through x (which
   // should lie inside): all are counted, and a run of at most `run` of them (at most
   // kMaxMeshChainsReturned) is returned, cyclically from the one a uniform u in [0, 1) picks,
   // so that each is returned with probability returned / found. Whether each segment is
@@ -87,13 +97,18 @@ class FacetChainTree {
     Vec3d p0, e1, e2;  // corner and edges
     Vec3d n;           // outward unit normal
   };
-  // A beam leaving a facet: the light refracted in (level 0) or reflected (above).
+  // A beam leaving a facet into the inside: the light refracted in (level 0), reflected, or
+  // refracted in again after crossing out of the mesh at crossed_from (above).
   struct Beam {
     uint32_t facet = 0;
-    uint32_t parent = 0;  // the beam it reflects, one level down
+    uint32_t parent = 0;  // the beam it continues, one level down
     Vec3d direction;      // unit propagation direction after the facet
-    double reflectance = 1;
+    double fresnel = 1;   // the product of the Fresnel factors so far
+    double jacobian = 0;  // dV / (dA(y) dt) so far
+    uint32_t crossed_from = kNoFacet;
+    Vec3d outside;  // unit propagation direction outside, for a crossing
   };
+  static constexpr uint32_t kNoFacet = ~uint32_t{0};
   // The chain whose last beam is levels_[reflections][beam], traced back from x; false if the
   // beam, or one below it, misses its facet.
   bool trace_back(const Vec3d& x, int reflections, uint32_t beam, MeshChain* chain) const;
