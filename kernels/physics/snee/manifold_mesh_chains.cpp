@@ -170,7 +170,7 @@ constexpr double kSmallestFragment = 1e-12;
 
 FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, int max_reflections,
                                uint64_t bytes_per_level)
-    : light_(light), eta_(eta) {
+    : light_(light) {
   const Vec3d l = normalize(Vec3d(light));
   std::vector<std::array<Vec3d, 3>> corners;
   facets_.reserve(mesh.triangle_count());

@@ -114,7 +114,6 @@ class FacetChainTree {
   bool trace_back(const Vec3d& x, int reflections, uint32_t beam, MeshChain* chain) const;
 
   Vec3 light_;
-  double eta_ = 1;
   std::vector<Facet> facets_;
   std::vector<std::vector<Beam>> levels_;  // levels_[k]: beams after k reflections
   std::vector<BallConeTree> trees_;        // trees_[k - 1] over levels_[k]
