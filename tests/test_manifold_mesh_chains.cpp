@@ -77,12 +77,30 @@ std::vector<MeshChain> all_chains(const FacetChainTree& tree, Vec3 x, int reflec
   return out;
 }
 
+// Whether p lies on a facet of the mesh whose outward normal is n.
+bool on_facet(const std::vector<Triangle>& facets, Vec3 p, Vec3 n) {
+  for (const Triangle& f : facets) {
+    if (!(dot(Vec3d(n), f.n) > 1.0 - 1e-6)) continue;
+    // From just off the plane, back onto it: the hit must fall inside the triangle.
+    double t = 0;
+    if (meets(f, Vec3d(p) + 1e-5 * f.n, -f.n, -1e-4, &t) && t < 2e-5) return true;
+  }
+  return false;
+}
+
 // Every chain obeys Snell's law at its entry and wherever it crosses out and in, and the law of
-// reflection at each other point, and its Fresnel product and Jacobian are those of its facets.
-void expect_valid(const std::vector<MeshChain>& chains, int levels, Vec3 light, Vec3 x,
-                  const std::string& name) {
+// reflection at each other point, each of its points lies on a facet of the mesh with the normal
+// it carries, and its Fresnel product and Jacobian are those of its facets.
+void expect_valid(const std::vector<MeshChain>& chains, const std::vector<Triangle>& facets,
+                  int levels, Vec3 light, Vec3 x, const std::string& name) {
   for (const MeshChain& c : chains) {
     ASSERT_EQ(c.levels, levels) << name;
+    ASSERT_TRUE(on_facet(facets, c.y, c.n)) << name << ": the entry is on no facet";
+    for (int b = 0; b < c.events; ++b) {
+      ASSERT_TRUE(
+          on_facet(facets, c.point[static_cast<size_t>(b)], c.normal[static_cast<size_t>(b)]))
+          << name << ": point " << b << " is on no facet with its normal";
+    }
     Vec3d d = refracted_inward(Vec3d(c.n), normalize(Vec3d(light)), kEta);
     ASSERT_GT(length(d), 0.5) << name;
     double jacobian = std::abs(dot(Vec3d(c.n), d));
@@ -135,18 +153,19 @@ TEST(FacetChainTree, ChainsObeyTheLawsOfRefractionAndReflection) {
   TestRng rng(21);
   for (const NamedMesh& m : meshes()) {
     const Box box = bounds(m.mesh);
+    const std::vector<Triangle> facets = triangles(m.mesh);
     int found = 0, most = 0;
     for (int k = 0; k < 6; ++k) {
       const Vec3 light = sample_uniform_sphere(rng.uniform2());
       const FacetChainTree tree(m.mesh, kEta, light, kReflections);
-      ASSERT_EQ(tree.reflections_solved(), kReflections) << m.name;
+      ASSERT_EQ(tree.levels_solved(), kReflections) << m.name;
       for (int j = 0; j < 30; ++j) {
         const Vec3 x = random_inside(rng, m.mesh, box);
         for (int r = 1; r <= kReflections; ++r) {
           const std::vector<MeshChain> chains = all_chains(tree, x, r);
           found += static_cast<int>(chains.size());
           most = std::max(most, static_cast<int>(chains.size()));
-          expect_valid(chains, r, light, x, m.name);
+          expect_valid(chains, facets, r, light, x, m.name);
         }
       }
     }
@@ -241,10 +260,12 @@ TEST(FacetChainTree, FindsEveryForwardTracedChain) {
 }
 
 // The oracle on a small icosphere: every sequence of facets (entry, then one facet per
-// reflection), traced back from x by the laws of reflection and refraction alone.
-int every_sequence(const std::vector<Triangle>& facets, Vec3 light, Vec3 x, int reflections) {
+// reflection), traced back from x by the laws of reflection and refraction alone; the entry
+// point of each that holds.
+std::vector<Vec3d> every_sequence(const std::vector<Triangle>& facets, Vec3 light, Vec3 x,
+                                  int reflections) {
   const Vec3d l = normalize(Vec3d(light));
-  int count = 0;
+  std::vector<Vec3d> entries;
   std::vector<size_t> sequence(static_cast<size_t>(reflections) + 1, 0);
   const size_t n = facets.size();
   for (;;) {
@@ -264,10 +285,10 @@ int every_sequence(const std::vector<Triangle>& facets, Vec3 light, Vec3 x, int 
                     -direction[static_cast<size_t>(r)], 0.0, &t);
       at = at - t * direction[static_cast<size_t>(r)];
     }
-    count += valid ? 1 : 0;
+    if (valid) entries.push_back(at);
     size_t digit = 0;
     while (digit < sequence.size() && ++sequence[digit] == n) sequence[digit++] = 0;
-    if (digit == sequence.size()) return count;
+    if (digit == sequence.size()) return entries;
   }
 }
 
@@ -283,9 +304,17 @@ TEST(FacetChainTree, FindsWhatEverySequenceOfFacetsFinds) {
     for (int j = 0; j < 6; ++j) {
       const Vec3 x = random_inside(rng, mesh, box);
       for (int r = 1; r <= 2; ++r) {
-        const int count = tree.chains_toward(x, r, 1, 0.0).found;
-        EXPECT_EQ(count, every_sequence(facets, light, x, r)) << r << " reflections";
-        found += count;
+        // The same chains: as many, and each of the oracle's entry points among the tree's.
+        const std::vector<MeshChain> chains = all_chains(tree, x, r);
+        const std::vector<Vec3d> entries = every_sequence(facets, light, x, r);
+        ASSERT_EQ(chains.size(), entries.size()) << r << " reflections";
+        for (const Vec3d& y : entries) {
+          bool in_tree = false;
+          for (const MeshChain& c : chains) in_tree |= length(Vec3d(c.y) - y) < 1e-5;
+          EXPECT_TRUE(in_tree) << r << " reflections: the entry (" << y.x << ", " << y.y << ", "
+                               << y.z << ") is not found";
+        }
+        found += static_cast<int>(chains.size());
       }
     }
   }
@@ -296,19 +325,28 @@ TEST(FacetChainTree, FindsWhatEverySequenceOfFacetsFinds) {
 TEST(FacetChainTree, FragmentsOnTheBunny) {
   const TriangleMesh mesh = bunny();
   const auto start = std::chrono::steady_clock::now();
-  const FacetChainTree tree(mesh, kEta, normalize(Vec3(1, 1, 1)), kMaxMeshChainReflections);
+  const FacetChainTree tree(mesh, kEta, normalize(Vec3(1, 1, 1)), kMaxMeshChainLevels);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "built in " << seconds << " s over " << mesh.triangle_count() << " triangles:";
-  for (int r = 1; r <= tree.reflections_solved(); ++r) std::cout << " " << tree.fragments(r);
+  for (int r = 1; r <= tree.levels_solved(); ++r) std::cout << " " << tree.fragments(r);
   std::cout << " fragments\n";
-  EXPECT_GE(tree.reflections_solved(), 2);
-  // A level that does not fit its memory is left out, with every level above it.
-  const uint64_t first_level = tree.fragments(1);
-  const FacetChainTree small(mesh, kEta, normalize(Vec3(1, 1, 1)), kMaxMeshChainReflections,
-                             (first_level + 10) * FacetChainTree::bytes_per_fragment());
-  EXPECT_EQ(small.reflections_solved(), 1);
-  EXPECT_EQ(small.fragments(1), first_level);
+  // Every level fits the bunny, each holding more than the one below (each beam splits over
+  // the facets ahead of it).
+  ASSERT_EQ(tree.levels_solved(), kMaxMeshChainLevels);
+  for (int r = 2; r <= kMaxMeshChainLevels; ++r)
+    EXPECT_GT(tree.fragments(r), tree.fragments(r - 1));
+  // A level that does not fit what is left of the allowance is left out, with every level above
+  // it: room for twice the first level's fragments after what a one-level tree holds is ample
+  // for the first and, as the second holds more than twice as many, too little for the second.
+  const FacetChainTree one(mesh, kEta, normalize(Vec3(1, 1, 1)), 1);
+  ASSERT_GT(tree.fragments(2), 2 * tree.fragments(1));
+  const uint64_t allowance =
+      one.bytes() + 2 * tree.fragments(1) * FacetChainTree::bytes_per_fragment();
+  const FacetChainTree small(mesh, kEta, normalize(Vec3(1, 1, 1)), kMaxMeshChainLevels, allowance);
+  EXPECT_EQ(small.levels_solved(), 1);
+  EXPECT_EQ(small.fragments(1), tree.fragments(1));
+  EXPECT_LE(small.bytes(), allowance);
   EXPECT_EQ(small.chains_toward(Vec3(0, 0, 0), 2, kMaxMeshChainsReturned, 0.5).found, 0);
 }
 

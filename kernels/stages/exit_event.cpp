@@ -192,10 +192,10 @@ void connect_chain(const KernelContext& ctx, const PathState& state, uint32_t sl
 // walk would have spent one depth per reflection and one for the exit, so chains stop where the
 // path tracer's depth limit would.
 ChainChoice chain_choice(const KernelContext& ctx, const PathState& state, uint32_t slot,
-                         const MediumInfo& m, float u, int most_reflections) {
+                         const MediumInfo& m, float u) {
   ChainChoice choice = choose_chain_reflections(u, m.chain_search);
   const int depth_left = ctx.max_depth - static_cast<int>(state.depth[slot]) - 1;
-  if (choice.reflections > std::min(depth_left, most_reflections)) choice.reflections = 0;
+  if (choice.reflections > depth_left) choice.reflections = 0;
   return choice;
 }
 
@@ -207,8 +207,8 @@ void connect_reflection_chains(const KernelContext& ctx, const PathState& state,
                                const DielectricParams& interface, const LightSample& light,
                                const LightAt& light_at, float u, float rate, ShadowQueue& shadow,
                                KernelCounters& counters) {
-  const ChainChoice choice = chain_choice(ctx, state, slot, m, u, kMaxChainReflections);
-  if (choice.reflections < 1) return;
+  const ChainChoice choice = chain_choice(ctx, state, slot, m, u);
+  if (choice.reflections < 1 || choice.reflections > kMaxChainReflections) return;
   const Vec3 x_j = state.vertex_j(slot);
   const SphereChains chains =
       std::isinf(light.distance)
@@ -259,9 +259,10 @@ void connect_mesh_chains(const KernelContext& ctx, const PathState& state, uint3
                          const MediumInfo& m, const FacetChainTree& tree,
                          const DielectricParams& interface, const LightSample& light, float u,
                          float rate, ShadowQueue& shadow, KernelCounters& counters) {
-  const ChainChoice choice = chain_choice(ctx, state, slot, m, u, kMaxMeshChainReflections);
+  const ChainChoice choice = chain_choice(ctx, state, slot, m, u);
   if (choice.reflections < 1) return;
-  if (choice.reflections > tree.reflections_solved()) {
+  // Beyond kMaxMeshChainLevels, or beyond the levels the memory allowance held.
+  if (choice.reflections > tree.levels_solved()) {
     counters.count(SneeCounter::kManifoldChainsUnsupported);
     return;
   }
@@ -419,7 +420,8 @@ void connect_manifold(const KernelContext& ctx, const PathState& state, uint32_t
     if (chains != nullptr) {
       connect_mesh_chains(ctx, state, slot, m, *chains, interface, light, u_choice, rate, shadow,
                           counters);
-    } else {
+    } else if (chain_choice(ctx, state, slot, m, u_choice).reflections > 0) {
+      // A point or spot light: where a chain would have been searched.
       counters.count(SneeCounter::kManifoldChainsUnsupported);
     }
     return;

@@ -4,6 +4,8 @@
 // order, inputs and contracts with each other are the stage table's (stage_table.h).
 #pragma once
 
+#include <algorithm>
+
 #include "kernels/physics/snee/manifold_sphere.h"
 #include "kernels/wavefront/kernel_context.h"
 #include "kernels/wavefront/path_state.h"
@@ -12,15 +14,17 @@
 
 namespace snee {
 
-// Shadow segments one slot may queue in one turn: top-to-bottom and bottom-to-top (3 each) or an
-// exit event's, with room to spare, plus two per exit point of the manifold strategy and its
-// V_first selector, plus its reflection chains (kChainSegmentBudget).
-inline constexpr size_t kShadowSegmentsPerSlot = 8 + 3 * kMaxSphereExits + kChainSegmentBudget;
-// Exit points of a mesh boundary one vertex connects (exit_event.cpp): meshes search no
-// reflection chains, so their connections (three segments each at most) take the chains' share
-// of the budget too.
+// Exit points of a mesh boundary one vertex connects (exit_event.cpp): a mesh has more exit
+// points than the sphere's few, so more of them are connected in full.
 inline constexpr int kMeshExitsConnected =
     kMaxSphereExits + static_cast<int>(kChainSegmentBudget) / 3;
+// Shadow segments one slot may queue in one turn: top-to-bottom and bottom-to-top (3 each) or an
+// exit event's, with room to spare, plus three per exit point of the manifold strategy (two and
+// its V_first selector), on a mesh as on the sphere, plus its reflection chains
+// (kChainSegmentBudget).
+inline constexpr size_t kShadowSegmentsPerSlot =
+    8 + 3 * static_cast<size_t>(std::max(kMaxSphereExits, kMeshExitsConnected)) +
+    kChainSegmentBudget;
 
 // The queues one work unit cycles through: the inputs of the stage table (stage_table.h) and
 // the scratch of the stages' batched passes.

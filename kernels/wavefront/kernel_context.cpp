@@ -144,21 +144,24 @@ void build_facet_exit_trees(const Scene& s, const Shape& mesh, float eta, bool c
   for (const int i : point) point_trees->emplace_back(mesh.mesh, eta, s.lights[i].position, i);
   m.manifold_mesh = std::move(trees);
   m.manifold_mesh_points = std::move(point_trees);
-  if (chains && !directional.empty()) {
-    auto chain_trees = std::make_shared<std::vector<FacetChainTree>>();
-    chain_trees->reserve(directional.size());
-    // The chains are the light's smaller part: each level is built within the budget, and the
-    // levels that do not fit are counted where a vertex would have searched them.
-    for (const int i : directional) {
-      chain_trees->emplace_back(mesh.mesh, eta, s.lights[i].direction, kMaxMeshChainReflections,
-                                budget.bytes);
-    }
-    m.manifold_mesh_chains = std::move(chain_trees);
-    // The search rate of a sphere as large as the mesh's bounding sphere.
-    ShapeBounds box;
-    box.add(mesh);
-    m.chain_search = chain_search_probability(m.medium.sigma_t, 0.5f * length(box.hi - box.lo));
+  if (!chains) return;
+  // The search rate of a sphere as large as the mesh's bounding sphere (under a point or spot
+  // light too, where the searches it would make are counted as unsupported).
+  ShapeBounds box;
+  box.add(mesh);
+  m.chain_search = chain_search_probability(m.medium.sigma_t, 0.5f * length(box.hi - box.lo));
+  if (directional.empty()) return;
+  auto chain_trees = std::make_shared<std::vector<FacetChainTree>>();
+  chain_trees->reserve(directional.size());
+  // The chains are the light's smaller part: they get what the exit trees leave of the budget,
+  // shared by the lights, and the levels that do not fit are counted where a vertex would have
+  // searched them.
+  const uint64_t per_light = (budget.bytes - bytes) / directional.size();
+  for (const int i : directional) {
+    chain_trees->emplace_back(mesh.mesh, eta, s.lights[i].direction, kMaxMeshChainLevels,
+                              per_light);
   }
+  m.manifold_mesh_chains = std::move(chain_trees);
 }
 
 }  // namespace

@@ -1,8 +1,12 @@
 #include "kernels/wavefront/queues.h"
 
+#include <cassert>
+
 namespace snee {
 
 uint32_t RayBatch::push(Vec3 origin, Vec3 direction, float tnear, float tfar) {
+  // The stages size each batch for their worst case (e.g. kShadowSegmentsPerSlot).
+  assert(size_ < capacity_);
   const size_t i = size_++;
   s_.org_x[i] = origin.x;
   s_.org_y[i] = origin.y;

@@ -24,6 +24,7 @@ BallConeTree::BallConeTree(std::vector<Bounds> items) {
   for (size_t i = 0; i < items.size(); ++i) {
     entries.push_back({items[i], static_cast<uint32_t>(i)});
   }
+  items = {};
   nodes_.reserve(2 * entries.size() + 1);
   build(entries, 0, static_cast<uint32_t>(entries.size()));
   item_.reserve(entries.size());
@@ -32,8 +33,9 @@ BallConeTree::BallConeTree(std::vector<Bounds> items) {
 
 uint64_t BallConeTree::bytes_at_most(uint64_t items) {
   const uint64_t nodes = saturating_add(saturating_multiply(2, items), 1);
-  return saturating_add(saturating_multiply(items, sizeof(uint32_t)),
-                        saturating_multiply(nodes, sizeof(Node)));
+  return saturating_add(
+      saturating_multiply(items, sizeof(Bounds) + sizeof(Entry) + sizeof(uint32_t)),
+      saturating_multiply(nodes, sizeof(Node)));
 }
 
 uint32_t BallConeTree::build(std::vector<Entry>& entries, uint32_t first, uint32_t count) {

@@ -34,9 +34,10 @@ class BallConeTree {
 
   BallConeTree() = default;
   explicit BallConeTree(std::vector<Bounds> items);
-  // The most bytes a tree over `items` items holds, for memory budgets checked before building.
+  // The most bytes a tree over `items` items takes, the items it is given and its building
+  // included, for memory budgets checked before building.
   static uint64_t bytes_at_most(uint64_t items);
-  // What each item adds to that: its index and two nodes.
+  // What each item adds to the built tree: its index and two nodes.
   static uint64_t bytes_per_item() { return sizeof(uint32_t) + 2 * sizeof(Node); }
 
   // Calls candidate(i) for every item i (its index in the constructor's vector) whose ball and

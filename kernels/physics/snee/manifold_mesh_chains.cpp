@@ -12,8 +12,9 @@ namespace snee {
 namespace {
 
 // A convex polygon: a beam's cross-section where it leaves a facet. Each clip adds at most one
-// corner to the triangle it starts as, and a level clips four times.
-constexpr int kMaxCorners = 4 + 4 * kMaxMeshChainReflections;
+// corner to the triangle it starts as; landing on a facet clips four times, and a crossing
+// level lands twice.
+constexpr int kMaxCorners = 3 + 8 * kMaxMeshChainLevels;
 struct Polygon {
   std::array<Vec3d, kMaxCorners> corner;
   int count = 0;
@@ -28,7 +29,8 @@ Polygon clip(const Polygon& polygon, const Vec3d& m, double c) {
     const Vec3d& b = polygon.corner[static_cast<size_t>((i + 1) % n)];
     const double da = dot(m, a) - c, db = dot(m, b) - c;
     if (da >= 0) out.corner[static_cast<size_t>(out.count++)] = a;
-    if ((da >= 0) != (db >= 0)) {
+    // A corner on the plane is kept once, not again as a crossing of its own edge.
+    if ((da > 0 && db < 0) || (da < 0 && db > 0)) {
       out.corner[static_cast<size_t>(out.count++)] = a + (da / (da - db)) * (b - a);
     }
   }
@@ -168,8 +170,8 @@ constexpr double kSmallestFragment = 1e-12;
 
 }  // namespace
 
-FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, int max_reflections,
-                               uint64_t bytes_per_level)
+FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, int max_levels,
+                               uint64_t bytes)
     : light_(light) {
   const Vec3d l = normalize(Vec3d(light));
   std::vector<std::array<Vec3d, 3>> corners;
@@ -181,8 +183,6 @@ FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, 
     corners.push_back({q0, q1, q2});
   });
   const FacetBoxTree boxes(corners);
-  const uint64_t cap = std::min(kMeshChainFragmentsPerTriangle * facets_.size(),
-                                bytes_per_level / bytes_per_fragment());
 
   // Level 0: the beams refracted in through the facets facing the light, each leaving its whole
   // facet.
@@ -198,7 +198,20 @@ FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, 
     region.add(triangle);
   }
   const float inverse_eta = 1.0f / eta;
-  for (int k = 1; k <= std::min(max_reflections, kMaxMeshChainReflections); ++k) {
+  // What the levels built hold (bytes_), and the cross-sections of the last, which the next
+  // level is clipped from; the facets and their box tree are the exit tree's size, which the
+  // caller's allowance leaves out.
+  const auto level_bytes = [](const std::vector<Beam>& beams) {
+    return beams.capacity() * sizeof(Beam) + beams.size() * BallConeTree::bytes_per_item();
+  };
+  bytes_ = level_bytes(levels_[0]);
+  for (int k = 1; k <= std::min(max_levels, kMaxMeshChainLevels); ++k) {
+    const uint64_t held =
+        bytes_ + region.corners.capacity() * sizeof(Vec3d) + region.first.capacity() * 4;
+    // Regions::first indexes corners in 32 bits.
+    const uint64_t cap = std::min({kMeshChainFragmentsPerTriangle * facets_.size(),
+                                   (bytes > held ? bytes - held : 0) / bytes_per_fragment(),
+                                   uint64_t{UINT32_MAX} / kMaxCorners});
     const std::vector<Beam>& below = levels_.back();
     std::vector<Beam> beams;
     Regions next_region;
@@ -287,6 +300,7 @@ FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, 
       bounds.push_back(b);
     }
     trees_.emplace_back(std::move(bounds));
+    bytes_ += level_bytes(beams);
     levels_.push_back(std::move(beams));
     region = std::move(next_region);
   }
@@ -294,23 +308,24 @@ FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, 
 
 uint64_t FacetChainTree::bytes_per_fragment() {
   // Kept: its beam and its share of the level's tree. While building: its cross-section, and
-  // the tree's bounds of it.
-  return sizeof(Beam) + BallConeTree::bytes_per_item() + sizeof(uint32_t) +
-         kMaxCorners * sizeof(Vec3d) + 2 * sizeof(BallConeTree::Bounds);
+  // the tree's bounds of it (copied once into the tree). The beams and cross-sections grow by
+  // doubling, so each may hold twice what it uses.
+  return 2 * sizeof(Beam) + BallConeTree::bytes_per_item() +
+         2 * (sizeof(uint32_t) + kMaxCorners * sizeof(Vec3d)) + 2 * sizeof(BallConeTree::Bounds);
 }
 
-uint64_t FacetChainTree::fragments(int reflections) const {
-  if (reflections < 1 || reflections > reflections_solved()) return 0;
-  return levels_[static_cast<size_t>(reflections)].size();
+uint64_t FacetChainTree::fragments(int level) const {
+  if (level < 1 || level > levels_solved()) return 0;
+  return levels_[static_cast<size_t>(level)].size();
 }
 
-bool FacetChainTree::trace_back(const Vec3d& x, int reflections, uint32_t beam_index,
+bool FacetChainTree::trace_back(const Vec3d& x, int level, uint32_t beam_index,
                                 MeshChain* chain) const {
   // From x against the last beam to the facet it left, then (for a crossing) against the
   // stretch outside to the facet the light left the mesh by, then against the beam below, down
   // to the entry. The points are found from x backwards and stored in the light's order.
-  const Beam& last = levels_[static_cast<size_t>(reflections)][beam_index];
-  chain->levels = reflections;
+  const Beam& last = levels_[static_cast<size_t>(level)][beam_index];
+  chain->levels = level;
   chain->omega_last = Vec3(last.direction);
   chain->fresnel = last.fresnel;
   chain->jacobian = last.jacobian;
@@ -329,10 +344,10 @@ bool FacetChainTree::trace_back(const Vec3d& x, int reflections, uint32_t beam_i
     if (inside) chain->length += t;
     return true;
   };
-  for (int level = reflections; level >= 0; --level) {
-    const Beam& beam = levels_[static_cast<size_t>(level)][index];
+  for (int at_level = level; at_level >= 0; --at_level) {
+    const Beam& beam = levels_[static_cast<size_t>(at_level)][index];
     if (!back(beam.facet, beam.direction, true)) return false;
-    if (level == 0) {
+    if (at_level == 0) {
       chain->y = Vec3(at);
       chain->n = Vec3(facets_[beam.facet].n);
       break;
@@ -358,14 +373,14 @@ bool FacetChainTree::trace_back(const Vec3d& x, int reflections, uint32_t beam_i
   return true;
 }
 
-MeshChains FacetChainTree::chains_toward(Vec3 x_in, int reflections, int run, double u) const {
+MeshChains FacetChainTree::chains_toward(Vec3 x_in, int levels, int run, double u) const {
   MeshChains out;
-  if (reflections < 1 || reflections > reflections_solved()) return out;
+  if (levels < 1 || levels > levels_solved()) return out;
   const Vec3d x(x_in);
   std::array<uint32_t, kMaxMeshChainsFound> found;
   MeshChain scratch;
-  trees_[static_cast<size_t>(reflections - 1)].for_each_candidate(x, [&](uint32_t i) {
-    if (!trace_back(x, reflections, i, &scratch)) return;
+  trees_[static_cast<size_t>(levels - 1)].for_each_candidate(x, [&](uint32_t i) {
+    if (!trace_back(x, levels, i, &scratch)) return;
     if (out.found == kMaxMeshChainsFound) {
       ++out.dropped;
       return;
@@ -376,7 +391,7 @@ MeshChains FacetChainTree::chains_toward(Vec3 x_in, int reflections, int run, do
   const int keep = std::min({n, run, kMaxMeshChainsReturned});
   const int start = n > keep ? std::min(static_cast<int>(u * n), n - 1) : 0;
   for (int k = 0; k < keep; ++k) {
-    trace_back(x, reflections, found[static_cast<size_t>((start + k) % n)],
+    trace_back(x, levels, found[static_cast<size_t>((start + k) % n)],
                &out.chain[static_cast<size_t>(out.returned++)]);
   }
   return out;

@@ -5,8 +5,8 @@
 // light entering through a facet is one beam, and its reflection off a facet, or its refraction
 // out and in again, is again one beam, leaving the part of a facet the incoming beam covers (a
 // convex fragment). The fragments are enumerated once per light, level by level (one
-// reflection more each), by clipping each beam against the facets ahead of it; a query then
-// finds the fragments whose beam passes through x with a ball-and-cone tree per level, and
+// reflection or crossing more each), by clipping each beam against the facets ahead of it; a query
+// then finds the fragments whose beam passes through x with a ball-and-cone tree per level, and
 // traces each back, facet by facet, to its entry point. Which facets block a beam is left to
 // the caller's rays, so the enumeration is exact without hidden-surface removal.
 #pragma once
@@ -22,12 +22,12 @@
 
 namespace snee {
 
-// Most reflections a mesh chain may have: each level holds more fragments than the last (each
-// beam splits over the facets ahead of it), so the levels are few.
-inline constexpr int kMaxMeshChainReflections = 4;
-// Fragments a level may hold per triangle of the mesh (measured on the bunny: 3.6, 10.4, 22.7
-// and 41.5 for one to four reflections); a level that would hold more, or more than the memory
-// budget allows one level, is not built (nor any above it), and its chains are counted as
+// Most levels (reflections and crossings) a mesh chain may have: each level holds more
+// fragments than the last (each beam splits over the facets ahead of it), so the levels are few.
+inline constexpr int kMaxMeshChainLevels = 4;
+// Fragments a level may hold per triangle of the mesh (measured on the bunny: 4.0, 11.8, 27.2
+// and 51.0 for one to four levels); a level that would hold more, or more than what is left of
+// the memory allowance, is not built (nor any above it), and its chains are counted as
 // unsupported.
 inline constexpr uint64_t kMeshChainFragmentsPerTriangle = 64;
 // Most chains one query finds (more are counted as dropped). Near a caustic, where the beams of
@@ -39,7 +39,7 @@ inline constexpr int kMaxMeshChainsReturned = 16;
 
 // Points on the boundary a chain may pass between its entry and x: one per reflection, two per
 // crossing (leaving the mesh and entering it again).
-inline constexpr int kMaxMeshChainEvents = 2 * kMaxMeshChainReflections;
+inline constexpr int kMaxMeshChainEvents = 2 * kMaxMeshChainLevels;
 
 // The light entering at y, then reflected inside or crossing out and back in at point[0],
 // point[1], ... (in the light's order), that reaches x on its last segment.
@@ -69,28 +69,29 @@ struct MeshChains {
 class FacetChainTree {
  public:
   // The chains of `mesh` (world space, outward winding, relative index eta = inside / outside)
-  // under the directional light along `light` (unit, toward it), up to `max_reflections`
-  // reflections (at most kMaxMeshChainReflections), each level within `bytes_per_level` (what
-  // it holds and what building it takes).
-  FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, int max_reflections,
-                 uint64_t bytes_per_level = ~uint64_t{0});
+  // under the directional light along `light` (unit, toward it), up to `max_levels` levels (at
+  // most kMaxMeshChainLevels), all of them within `bytes` (what the levels hold and what
+  // building the next one takes): a level that would not fit is left out, and those above it.
+  FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, int max_levels,
+                 uint64_t bytes = ~uint64_t{0});
   // What one fragment costs a level, kept and while it is built.
   static uint64_t bytes_per_fragment();
 
   Vec3 light() const { return light_; }
-  // Reflection counts it has every chain of: 1 to this.
-  int reflections_solved() const { return static_cast<int>(trees_.size()); }
-  // Fragments at each reflection count (statistics for the docs and tests).
-  uint64_t fragments(int reflections) const;
+  // Level counts it has every chain of: 1 to this.
+  int levels_solved() const { return static_cast<int>(trees_.size()); }
+  // Fragments at each level (statistics for the docs and tests).
+  uint64_t fragments(int level) const;
+  // What the levels built hold.
+  uint64_t bytes() const { return bytes_; }
 
-  // The chains with exactly `reflections` levels (reflections and crossings) whose last beam
-  // passes through x (which
-  // should lie inside): all are counted, and a run of at most `run` of them (at most
-  // kMaxMeshChainsReturned) is returned, cyclically from the one a uniform u in [0, 1) picks,
-  // so that each is returned with probability returned / found. Whether each segment is
-  // unblocked, and the light reaches y, is for the caller's rays to decide. None where
-  // `reflections` is not solved.
-  MeshChains chains_toward(Vec3 x, int reflections, int run, double u) const;
+  // The chains with exactly `levels` levels (reflections and crossings) whose last beam passes
+  // through x (which should lie inside): all are counted, and a run of at most `run` of them
+  // (at most kMaxMeshChainsReturned) is returned, cyclically from the one a uniform u in
+  // [0, 1) picks, so that each is returned with probability returned / found. Whether each
+  // segment is unblocked, and the light reaches y, is for the caller's rays to decide. None
+  // where `levels` is not solved.
+  MeshChains chains_toward(Vec3 x, int levels, int run, double u) const;
 
  private:
   struct Facet {
@@ -109,14 +110,15 @@ class FacetChainTree {
     Vec3d outside;  // unit propagation direction outside, for a crossing
   };
   static constexpr uint32_t kNoFacet = ~uint32_t{0};
-  // The chain whose last beam is levels_[reflections][beam], traced back from x; false if the
-  // beam, or one below it, misses its facet.
-  bool trace_back(const Vec3d& x, int reflections, uint32_t beam, MeshChain* chain) const;
+  // The chain whose last beam is levels_[level][beam], traced back from x; false if the beam,
+  // or one below it, misses its facet.
+  bool trace_back(const Vec3d& x, int level, uint32_t beam, MeshChain* chain) const;
 
   Vec3 light_;
   std::vector<Facet> facets_;
-  std::vector<std::vector<Beam>> levels_;  // levels_[k]: beams after k reflections
+  std::vector<std::vector<Beam>> levels_;  // levels_[k]: beams after k levels
   std::vector<BallConeTree> trees_;        // trees_[k - 1] over levels_[k]
+  uint64_t bytes_ = 0;
 };
 
 }  // namespace snee

@@ -37,6 +37,7 @@ PointFacetTree::PointFacetTree(const TriangleMesh& mesh, float eta, Vec3 light_p
   // Reserved in full so the memory is what bytes_at_most promised, not a doubling past it.
   facets_.reserve(mesh.triangle_count());
   std::vector<BallConeTree::Bounds> bounds;
+  bounds.reserve(mesh.triangle_count());
   // Each facet's cone. The light's directions toward a facet fill the spherical triangle of its
   // corners' directions, inside the cone around their mean that reaches the farthest corner.
   // Refraction into a denser inside maps directions with a Jacobian whose singular values are e
