@@ -21,6 +21,7 @@
 #include "apps/sample_counts.h"
 #include "apps/simd_option.h"
 #include "apps/stats_json.h"
+#include "kernels/physics/snee/manifold_mesh_chains.h"
 #include "scene/aov_selection.h"
 #include "scene/scene_loader.h"
 #include "scene/shape_bounds.h"
@@ -192,6 +193,16 @@ RenderCommand::RenderCommand(CLI::App& parent)
                "those paths out, to measure them, and builds no chain trees: docs/method.md 3.12, "
                "3.14)")
       ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str()
+      ->group(snee);
+  c.add_option("--snee-chain-levels", options_.snee.mesh_chain_levels,
+               "Most reflections and crossings of the chains behind a closed flat-shaded mesh "
+               "under a directional light (1 to " +
+                   std::to_string(kMaxMeshChainLevels) +
+                   "): each level holds about twice the fragments of the one below, in memory "
+                   "and build time; longer chains are counted as manifold_chains_unsupported "
+                   "(docs/method.md 3.14)")
+      ->check(CLI::Range(1, kMaxMeshChainLevels))
       ->capture_default_str()
       ->group(snee);
   c.add_option("--snee-manifold-rate", options_.snee.manifold_rate,

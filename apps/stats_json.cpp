@@ -109,6 +109,7 @@ nlohmann::ordered_json snee_options_json(const SneeOptions& snee) {
           {"strategies", strategy_set_name(snee.enabled)},
           {"light_limit_degrees", snee.light_limit_degrees},
           {"reflection_chains", snee.reflection_chains},
+          {"mesh_chain_levels", snee.mesh_chain_levels},
           {"manifold_rate", snee.manifold_rate}};
 }
 

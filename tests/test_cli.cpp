@@ -390,6 +390,24 @@ TEST_F(CliTest, SneeSaysWhenItRanAsThePathTracer) {
   }
 }
 
+// The chain levels behind a mesh reach the stats JSON, and a count outside 1-8 is refused
+// naming the option.
+TEST_F(CliTest, ChainLevelsAreRecordedAndChecked) {
+  const std::string render =
+      "render builtin:bunny-directional-smooth --resolution 8x8 --spp 1 --quiet "
+      "--integrator snee -o b.exr --stats b.json --snee-chain-levels ";
+  const Outcome two = snee(render + "2");
+  ASSERT_EQ(two.exit_code, 0) << two.output;
+  EXPECT_EQ(
+      nlohmann::json::parse(read_text_file(path("b.json")))["snee_options"]["mesh_chain_levels"],
+      2);
+  for (const char* bad : {"0", "9", "-1", "two"}) {
+    const Outcome refused = snee(render + bad);
+    EXPECT_NE(refused.exit_code, 0) << bad << ": " << refused.output;
+    EXPECT_TRUE(contains(refused.output, "--snee-chain-levels")) << refused.output;
+  }
+}
+
 // A grid medium renders from the command line; snee says it samples it as pt does; a broken
 // .vol file stops the render with the file, the JSON path and what was wrong.
 TEST_F(CliTest, GridMediumRendersAndABadGridFileIsNamed) {

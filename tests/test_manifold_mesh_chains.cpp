@@ -16,6 +16,7 @@
 #include "kernels/physics/sampling.h"
 #include "kernels/physics/snee/manifold_mesh.h"
 #include "kernels/physics/snee/manifold_mesh_chains.h"
+#include "kernels/physics/snee/snee_options.h"
 #include "tests/support/chi2.h"
 #include "tests/support/icosphere.h"
 #include "tests/support/mesh_interior.h"
@@ -325,16 +326,16 @@ TEST(FacetChainTree, FindsWhatEverySequenceOfFacetsFinds) {
 TEST(FacetChainTree, FragmentsOnTheBunny) {
   const TriangleMesh mesh = bunny();
   const auto start = std::chrono::steady_clock::now();
-  const FacetChainTree tree(mesh, kEta, normalize(Vec3(1, 1, 1)), kMaxMeshChainLevels);
+  const FacetChainTree tree(mesh, kEta, normalize(Vec3(1, 1, 1)), kDefaultMeshChainLevels);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::cout << "built in " << seconds << " s over " << mesh.triangle_count() << " triangles:";
   for (int r = 1; r <= tree.levels_solved(); ++r) std::cout << " " << tree.fragments(r);
   std::cout << " fragments\n";
-  // Every level fits the bunny, each holding more than the one below (each beam splits over
+  // Every default level fits the bunny, each holding more than the one below (each beam splits over
   // the facets ahead of it).
-  ASSERT_EQ(tree.levels_solved(), kMaxMeshChainLevels);
-  for (int r = 2; r <= kMaxMeshChainLevels; ++r)
+  ASSERT_EQ(tree.levels_solved(), kDefaultMeshChainLevels);
+  for (int r = 2; r <= kDefaultMeshChainLevels; ++r)
     EXPECT_GT(tree.fragments(r), tree.fragments(r - 1));
   // A level that does not fit what is left of the allowance is left out, with every level above
   // it: room for twice the first level's fragments after what a one-level tree holds is ample
@@ -343,7 +344,8 @@ TEST(FacetChainTree, FragmentsOnTheBunny) {
   ASSERT_GT(tree.fragments(2), 2 * tree.fragments(1));
   const uint64_t allowance =
       one.bytes() + 2 * tree.fragments(1) * FacetChainTree::bytes_per_fragment();
-  const FacetChainTree small(mesh, kEta, normalize(Vec3(1, 1, 1)), kMaxMeshChainLevels, allowance);
+  const FacetChainTree small(mesh, kEta, normalize(Vec3(1, 1, 1)), kDefaultMeshChainLevels,
+                             allowance);
   EXPECT_EQ(small.levels_solved(), 1);
   EXPECT_EQ(small.fragments(1), tree.fragments(1));
   EXPECT_LE(small.bytes(), allowance);

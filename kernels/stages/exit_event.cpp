@@ -261,12 +261,13 @@ void connect_mesh_chains(const KernelContext& ctx, const PathState& state, uint3
                          float rate, ShadowQueue& shadow, KernelCounters& counters) {
   const ChainChoice choice = chain_choice(ctx, state, slot, m, u);
   if (choice.reflections < 1) return;
-  // Beyond kMaxMeshChainLevels, or beyond the levels the memory allowance held.
+  // Beyond the levels asked for (SneeOptions::mesh_chain_levels), or the memory allowance held.
   if (choice.reflections > tree.levels_solved()) {
     counters.count(SneeCounter::kManifoldChainsUnsupported);
     return;
   }
   // A crossing needs one segment more than a reflection.
+  static_assert(2 * kMaxMeshChainLevels + 2 <= static_cast<int>(kChainSegmentBudget));
   const int per_chain = 2 * choice.reflections + 2;
   const Vec3 x_j = state.vertex_j(slot);
   const MeshChains chains = tree.chains_toward(

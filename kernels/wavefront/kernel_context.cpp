@@ -114,7 +114,7 @@ bool nothing_reaches_into(const Scene& s, size_t sphere) {
 // point or spot light outside it, and with `chains` a chain tree per directional light; their
 // size grows with the mesh, so it is checked against the budget before any is built.
 void build_facet_exit_trees(const Scene& s, const Shape& mesh, float eta, bool chains,
-                            const MemoryBudget& budget, MediumInfo& m) {
+                            int chain_levels, const MemoryBudget& budget, MediumInfo& m) {
   std::vector<int> directional, point;
   for (size_t i = 0; i < s.lights.size(); ++i) {
     const Light& light = s.lights[i];
@@ -158,8 +158,7 @@ void build_facet_exit_trees(const Scene& s, const Shape& mesh, float eta, bool c
   // searched them.
   const uint64_t per_light = (budget.bytes - bytes) / directional.size();
   for (const int i : directional) {
-    chain_trees->emplace_back(mesh.mesh, eta, s.lights[i].direction, kMaxMeshChainLevels,
-                              per_light);
+    chain_trees->emplace_back(mesh.mesh, eta, s.lights[i].direction, chain_levels, per_light);
   }
   m.manifold_mesh_chains = std::move(chain_trees);
 }
@@ -236,7 +235,8 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
                !shape.smooth_shading) {
       if (integ == Integrator::kSnee) {
         m.manifold_boundary = static_cast<int32_t>(i);
-        build_facet_exit_trees(s, shape, info.dielectric.eta, snee_.reflection_chains, budget, m);
+        build_facet_exit_trees(s, shape, info.dielectric.eta, snee_.reflection_chains,
+                               snee_.mesh_chain_levels, budget, m);
       }
     } else {
       m.manifold_unsupported = true;

@@ -209,7 +209,8 @@ FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, 
     const uint64_t held =
         bytes_ + region.corners.capacity() * sizeof(Vec3d) + region.first.capacity() * 4;
     // Regions::first indexes corners in 32 bits.
-    const uint64_t cap = std::min({kMeshChainFragmentsPerTriangle * facets_.size(),
+    const uint64_t per_triangle = kMeshChainFragmentsPerTriangle << std::max(0, k - 4);
+    const uint64_t cap = std::min({per_triangle * facets_.size(),
                                    (bytes > held ? bytes - held : 0) / bytes_per_fragment(),
                                    uint64_t{UINT32_MAX} / kMaxCorners});
     const std::vector<Beam>& below = levels_.back();

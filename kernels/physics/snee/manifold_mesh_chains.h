@@ -22,13 +22,14 @@
 
 namespace snee {
 
-// Most levels (reflections and crossings) a mesh chain may have: each level holds more
-// fragments than the last (each beam splits over the facets ahead of it), so the levels are few.
-inline constexpr int kMaxMeshChainLevels = 4;
-// Fragments a level may hold per triangle of the mesh (measured on the bunny: 4.0, 11.8, 27.2
-// and 51.0 for one to four levels); a level that would hold more, or more than what is left of
-// the memory allowance, is not built (nor any above it), and its chains are counted as
-// unsupported.
+// Most levels (reflections and crossings) a mesh chain may have: each level holds about twice
+// the fragments of the one below (each beam splits over the facets ahead of it), so the levels
+// are few (SneeOptions::mesh_chain_levels chooses how many, kDefaultMeshChainLevels by default).
+inline constexpr int kMaxMeshChainLevels = 8;
+// Fragments each of the first four levels may hold per triangle of the mesh (measured on the
+// bunny: 4.0, 11.8, 27.2 and 51.0 for one to four levels), twice as many each level above; a
+// level that would hold more, or more than what is left of the memory allowance, is not built
+// (nor any above it), and its chains are counted as unsupported.
 inline constexpr uint64_t kMeshChainFragmentsPerTriangle = 64;
 // Most chains one query finds (more are counted as dropped). Near a caustic, where the beams of
 // many facet pairs focus, a point inside an icosphere sees hundreds.

@@ -55,6 +55,10 @@ enum class MisHeuristic : uint8_t {
 // degrees (docs/method.md 3.11).
 inline constexpr float kDefaultLightLimitDegrees = 15.0f;
 inline constexpr float kDefaultManifoldRate = 0.125f;
+// Levels (reflections and crossings) of the reflection chains behind a flat-shaded mesh: each
+// level holds about twice the fragments of the one below and takes as much longer to build, and
+// four hold most of the light of the paper grid's bunny (docs/method.md 3.14).
+inline constexpr int kDefaultMeshChainLevels = 4;
 
 struct SneeOptions {
   ProbeDirections probe = ProbeDirections::kUniformSphere;
@@ -76,6 +80,9 @@ struct SneeOptions {
   // reaches x_j (docs/method.md 3.12). Those paths have no other strategy under a delta light,
   // so turning this off leaves them out: it exists to measure what they add.
   bool reflection_chains = true;
+  // How many levels of chains a flat-shaded mesh's chain tree holds (1 to kMaxMeshChainLevels);
+  // the searches that draw more are counted as unsupported.
+  int mesh_chain_levels = kDefaultMeshChainLevels;
   // The probability that the manifold strategy runs at a medium vertex x_j whose parent x_i is
   // a medium vertex too (docs/method.md 3.10); at the first scattering it always runs. There its
   // suffixes are the handled class, which top-to-bottom shares, and the rare V_first = 0 class,
