@@ -206,10 +206,10 @@ FacetChainTree::FacetChainTree(const TriangleMesh& mesh, float eta, Vec3 light, 
   };
   bytes_ = level_bytes(levels_[0]);
   for (int k = 1; k <= std::min(max_levels, kMaxMeshChainLevels); ++k) {
-    const uint64_t held =
-        bytes_ + region.corners.capacity() * sizeof(Vec3d) + region.first.capacity() * 4;
-    // Regions::first indexes corners in 32 bits.
+    const uint64_t held = bytes_ + region.corners.capacity() * sizeof(Vec3d) +
+                          region.first.capacity() * sizeof(uint32_t);
     const uint64_t per_triangle = kMeshChainFragmentsPerTriangle << std::max(0, k - 4);
+    // The last bound: Regions::first indexes corners in 32 bits.
     const uint64_t cap = std::min({per_triangle * facets_.size(),
                                    (bytes > held ? bytes - held : 0) / bytes_per_fragment(),
                                    uint64_t{UINT32_MAX} / kMaxCorners});
