@@ -160,8 +160,9 @@ RenderCommand::RenderCommand(CLI::App& parent)
 
   const std::string snee = "SNEE (docs/snee-implementation.md)";
   c.add_option("--snee-probe", snee_probe_,
-               "Direction of the exit-point probe: uniform (sphere) or phase (HG at x_i)")
-      ->check(CLI::IsMember({"uniform", "phase"}))
+               "Direction of the exit-point probe: uniform (sphere), phase (HG at x_i) or "
+               "lights (mostly toward the small lights)")
+      ->check(CLI::IsMember({"uniform", "phase", "lights"}))
       ->capture_default_str()
       ->group(snee);
   c.add_option("--snee-distance-mix", options_.snee.c_exponential,
@@ -203,6 +204,13 @@ RenderCommand::RenderCommand(CLI::App& parent)
                    "and build time; longer chains are counted as manifold_chains_unsupported "
                    "(docs/method.md 3.14)")
       ->check(CLI::Range(1, kMaxMeshChainLevels))
+      ->capture_default_str()
+      ->group(snee);
+  c.add_option("--snee-probe-rate", options_.snee.probe_rate,
+               "Probability that a medium vertex runs the exit-point probe and with it "
+               "top-to-bottom and bottom-to-top (docs/method.md 3.2); 1 runs them everywhere")
+      ->check(finite_positive())
+      ->check(finite_in_range(0, 1))
       ->capture_default_str()
       ->group(snee);
   c.add_option("--snee-manifold-rate", options_.snee.manifold_rate,
@@ -284,8 +292,7 @@ int RenderCommand::run(const RenderDistribution& distribution) const {
   Scene& scene = loaded.scene;
 
   RenderOptions options = options_;
-  options.snee.probe =
-      snee_probe_ == "phase" ? ProbeDirections::kPhaseFunction : ProbeDirections::kUniformSphere;
+  options.snee.probe = probe_directions_named(snee_probe_);
   options.snee.heuristic =
       snee_heuristic_ == "power" ? MisHeuristic::kPower : MisHeuristic::kBalance;
   options.snee.enabled = parse_strategy_set(snee_strategies_);

@@ -102,7 +102,7 @@ nlohmann::ordered_json stats_json(const std::string& scene, const RenderOptions&
 }
 
 nlohmann::ordered_json snee_options_json(const SneeOptions& snee) {
-  return {{"probe", snee.probe == ProbeDirections::kPhaseFunction ? "phase" : "uniform"},
+  return {{"probe", probe_directions_name(snee.probe)},
           {"distance_mix", snee.c_exponential},
           {"joint_mix", snee.c_joint},
           {"heuristic", snee.heuristic == MisHeuristic::kPower ? "power" : "balance"},
@@ -110,6 +110,7 @@ nlohmann::ordered_json snee_options_json(const SneeOptions& snee) {
           {"light_limit_degrees", snee.light_limit_degrees},
           {"reflection_chains", snee.reflection_chains},
           {"mesh_chain_levels", snee.mesh_chain_levels},
+          {"probe_rate", snee.probe_rate},
           {"manifold_rate", snee.manifold_rate}};
 }
 

@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "kernels/physics/lights/light_table.h"
+#include "kernels/physics/snee/light_extent.h"
+#include "kernels/physics/snee/probe.h"
 #include "kernels/physics/snee/snee_pdfs.h"
 #include "kernels/physics/snee/snee_strategies.h"
 #include "kernels/physics/snee/subdivision_vertices.h"
@@ -158,7 +160,8 @@ constexpr test::SneeCase kCases[] = {
 };
 
 // Proposals of both strategies for every case, thin and dense, isotropic and forward media, both
-// heuristics (the phase-function probe with the forward medium).
+// heuristics (the phase-function probe with the forward medium, the light-favouring one with the
+// isotropic medium's power heuristic).
 std::vector<std::pair<SneeOptions, Proposals>> proposal_sets(const test::SneeCase& c, TestRng& rng,
                                                              int exits) {
   const Scene scene = light_scene(c.light, Rgb(1.0f, 0.7f, 0.4f));
@@ -170,7 +173,11 @@ std::vector<std::pair<SneeOptions, Proposals>> proposal_sets(const test::SneeCas
       for (const MisHeuristic h : {MisHeuristic::kBalance, MisHeuristic::kPower}) {
         SneeOptions options;
         options.heuristic = h;
-        options.probe = g == 0 ? ProbeDirections::kUniformSphere : ProbeDirections::kPhaseFunction;
+        // The light-favouring probe with the isotropic medium's power heuristic.
+        options.probe = g != 0                      ? ProbeDirections::kPhaseFunction
+                        : h == MisHeuristic::kPower ? ProbeDirections::kTowardLights
+                                                    : ProbeDirections::kUniformSphere;
+        options.probe_targets = probe_targets_of(scene, lights, kWholeSkyDegrees);
         Proposals proposals;
         for (int k = 0; k < exits; ++k) {
           // Every other exit on a smooth-shaded boundary (docs/method.md 4.9).
@@ -326,7 +333,11 @@ void compare_sampler(uint64_t seed, bool delta_lights, Batch&& batch, Scalar&& s
         const SneeMedium medium{Rgb(0.9f, 0.7f, 0.5f) * density, Rgb(1.0f, 0.8f, 0.6f) * density,
                                 g};
         SneeOptions options;
-        options.probe = g == 0 ? ProbeDirections::kUniformSphere : ProbeDirections::kPhaseFunction;
+        // The light-favouring probe with the dense isotropic medium.
+        options.probe = g != 0           ? ProbeDirections::kPhaseFunction
+                        : density > 1.0f ? ProbeDirections::kTowardLights
+                                         : ProbeDirections::kUniformSphere;
+        options.probe_targets = probe_targets_of(scene, lights, kWholeSkyDegrees);
         for (int k = 0; k < 4000; ++k) {
           SamplerLanes in;
           std::array<std::array<float, N>, simd::kLanes> us;

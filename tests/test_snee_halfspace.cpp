@@ -17,6 +17,7 @@
 #include "kernels/physics/lights/light_table.h"
 #include "kernels/physics/medium/free_flight.h"
 #include "kernels/physics/medium/henyey_greenstein.h"
+#include "kernels/physics/snee/light_extent.h"
 #include "kernels/physics/snee/probe.h"
 #include "kernels/physics/snee/snee_strategies.h"
 #include "tests/support/chi2.h"
@@ -66,8 +67,13 @@ struct Estimators {
 
 class HalfSpace {
  public:
-  HalfSpace(DielectricParams interface, const Scene& scene)
-      : interface_(interface), lights_(scene) {}
+  HalfSpace(DielectricParams interface, const Scene& scene,
+            ProbeDirections probe = ProbeDirections::kUniformSphere, float probe_rate = 1.0f)
+      : interface_(interface), lights_(scene) {
+    options_.probe = probe;
+    options_.probe_rate = probe_rate;
+    options_.probe_targets = probe_targets_of(scene, lights_, kWholeSkyDegrees);
+  }
 
   Estimators run(int64_t samples, uint64_t seed) const {
     TestRng rng(seed);
@@ -124,9 +130,16 @@ class HalfSpace {
 
   // Probe from x_i, then both subdivision strategies.
   void subdivide(TestRng& rng, Sample* s) const {
-    const Vec3 w = probe_direction_sample(options_.probe, omega_in_, medium_.g, rng.uniform2());
+    // The lobe's number only where a lobe is drawn, so the other probes draw what they did.
+    const Vec2 u = rng.uniform2();
+    const float u_lobe = options_.probe == ProbeDirections::kTowardLights ? rng.uniform() : 0.0f;
+    const Vec3 w =
+        probe_direction_sample(options_, x_i_, omega_in_, medium_.g, Vec3(u.x, u.y, u_lobe));
     const auto u_tb = uniforms<kTopToBottomDimensions>(rng);
     const auto u_bt = uniforms<kBottomToTopDimensions>(rng);
+    // The probe runs at x_i with probability probe_rate (drawn only below 1, so the tests at
+    // rate 1 draw what they did).
+    if (options_.probe_rate < 1.0f && !(rng.uniform() < options_.probe_rate)) return;
     if (!(w.z > 0)) return;
     Vec3 x_k = x_i_ + (kDepth / w.z) * w;
     x_k.z = 0;
@@ -376,6 +389,55 @@ TEST(SneeHalfSpace, CaseDSmoothDirectional) {
   EXPECT_EQ(e.bottom_to_top.mean(), 0.0);
   EXPECT_EQ(e.unidirectional_bsdf.mean(), 0.0);
   EXPECT_EQ(e.unidirectional_light.mean(), 0.0);
+}
+
+// The light-favouring probe (docs/method.md 3.2) changes only which exit points the subdivision
+// strategies start from: every strategy alone and the combination still estimate the same
+// I(x_i), against the uniform probe's reference (CaseARough004Cone) and the quadrature.
+TEST(SneeHalfSpace, LightFavouringProbeCaseARough004Cone) {
+  const Scene scene = cone_scene(kConeHalfAngle, 1.0f);
+  const Estimators e =
+      HalfSpace({kEta, 0.04f}, scene, ProbeDirections::kTowardLights).run(kSamples, 108);
+  print("A alpha=0.04 cone, light-favouring probe", e);
+  expect_agrees("TB", e.top_to_bottom, {7.298e-3, 9.9e-5});
+  expect_agrees("BT", e.bottom_to_top, {7.242e-3, 8.9e-5});
+  expect_agrees("MIS", e.mis, {7.238e-3, 1.8e-5});
+  expect_isolation(e, true, true, true, true);
+}
+
+TEST(SneeHalfSpace, LightFavouringProbeCaseDSmoothDirectional) {
+  const Scene scene = directional_scene();
+  const Estimators e =
+      HalfSpace({kEta, 0.0f}, scene, ProbeDirections::kTowardLights).run(kSamples, 109);
+  print("D smooth directional, light-favouring probe", e);
+  const Reference quadrature{case_d_reference(kLightAxis), 0};
+  std::printf("    quadrature %.5e\n", quadrature.mean);
+  expect_agrees("TB", e.top_to_bottom, quadrature);
+  EXPECT_EQ(e.mis.mean(), e.top_to_bottom.mean());
+}
+
+// The probe at a quarter of the vertices (SneeOptions::probe_rate, docs/method.md 3.2): the
+// subdivision strategies' densities carry the rate, so each alone and the combination still
+// estimate I(x_i).
+TEST(SneeHalfSpace, ProbeRateCaseARough004Cone) {
+  const Scene scene = cone_scene(kConeHalfAngle, 1.0f);
+  const Estimators e =
+      HalfSpace({kEta, 0.04f}, scene, ProbeDirections::kUniformSphere, 0.25f).run(kSamples, 110);
+  print("A alpha=0.04 cone, probe rate 1/4", e);
+  expect_agrees("TB", e.top_to_bottom, {7.298e-3, 9.9e-5});
+  expect_agrees("BT", e.bottom_to_top, {7.242e-3, 8.9e-5});
+  expect_agrees("MIS", e.mis, {7.238e-3, 1.8e-5});
+  expect_isolation(e, true, true, true, true);
+}
+
+TEST(SneeHalfSpace, ProbeRateCaseDSmoothDirectional) {
+  const Scene scene = directional_scene();
+  const Estimators e =
+      HalfSpace({kEta, 0.0f}, scene, ProbeDirections::kUniformSphere, 0.25f).run(kSamples, 111);
+  print("D smooth directional, probe rate 1/4", e);
+  const Reference quadrature{case_d_reference(kLightAxis), 0};
+  expect_agrees("TB", e.top_to_bottom, quadrature);
+  EXPECT_EQ(e.mis.mean(), e.top_to_bottom.mean());
 }
 
 // Limits (docs/method.md 5.7): a nearly smooth rough interface under the directional light

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <vector>
 
 #include "kernels/physics/bsdf/fresnel.h"
 #include "kernels/physics/lights/light_table.h"
@@ -216,28 +218,127 @@ TEST(SneeJointImportance, VolumeOfBox) {
   }
 }
 
-// E[1_P(x_k) / p_probe(x_k)] = area(P) for a patch P of the plane z = 0 seen from below.
+// The light-favouring probe's targets for the tests: a distant light and a point light (whose
+// lobe's axis depends on x_i), sharing the lobes unevenly, with the default uniform share.
+SneeOptions light_favouring_probe() {
+  SneeOptions options;
+  options.probe = ProbeDirections::kTowardLights;
+  ProbeTargets& targets = options.probe_targets;
+  targets.count = 2;
+  targets.target[0] = {normalize(Vec3(0.6f, -0.2f, 1.0f)), false, 0.7f};
+  targets.target[1] = {Vec3(-1.5f, 0.8f, 0.9f), true, 0.3f};
+  targets.uniform_share = kDefaultProbeUniformShare;
+  return options;
+}
+
+// Each kind of probe, at the default rate and, for the uniform sphere, at every vertex.
+std::vector<SneeOptions> every_probe() {
+  SneeOptions uniform, everywhere, phase;
+  everywhere.probe_rate = 1.0f;
+  phase.probe = ProbeDirections::kPhaseFunction;
+  return {uniform, everywhere, phase, light_favouring_probe()};
+}
+
+Vec3 probe_sample(const SneeOptions& options, Vec3 x_i, Vec3 omega_in, float g, TestRng& rng) {
+  const Vec2 u = rng.uniform2();
+  return probe_direction_sample(options, x_i, omega_in, g, Vec3(u.x, u.y, rng.uniform()));
+}
+
+// E[1_P(x_k) / p_probe(x_k)] = area(P) for a patch P of the plane z = 0 seen from below, the
+// probe running at x_i with probability probe_rate, which its area density carries.
 TEST(SneeProbe, AreaOfPatch) {
   TestRng rng(24);
   const Vec3 x_i(0, 0, -0.4f), n(0, 0, 1), omega_in = normalize(Vec3(0.5f, 0.0f, 1.0f));
   const double area = 1.0;  // [0, 1] x [-0.5, 0.5]
-  for (const ProbeDirections kind :
-       {ProbeDirections::kUniformSphere, ProbeDirections::kPhaseFunction}) {
+  for (const SneeOptions& options : every_probe()) {
     const float g = 0.6f;
     test::MeanEstimator estimate;
     for (int k = 0; k < 1'000'000; ++k) {
-      const Vec3 w = probe_direction_sample(kind, omega_in, g, rng.uniform2());
-      if (!(w.z > 0)) {
+      const Vec3 w = probe_sample(options, x_i, omega_in, g, rng);
+      if (!(rng.uniform() < options.probe_rate) || !(w.z > 0)) {
         estimate.add(0);
         continue;
       }
       const Vec3 x_k = x_i + (-x_i.z / w.z) * w;
       const bool inside = x_k.x > 0 && x_k.x < 1 && std::fabs(x_k.y) < 0.5f;
-      estimate.add(inside ? 1.0 / probe_area_pdf(kind, omega_in, g, x_i, x_k, n) : 0.0);
+      estimate.add(inside ? 1.0 / probe_area_pdf(options, omega_in, g, x_i, x_k, n) : 0.0);
     }
     EXPECT_LT(test::z_score(estimate.mean(), estimate.standard_error(), area, 0), kMaxZ)
-        << estimate.mean() << " +- " << estimate.standard_error();
+        << probe_directions_name(options.probe) << ": " << estimate.mean() << " +- "
+        << estimate.standard_error();
   }
+}
+
+// The directions follow their density, which integrates to one (chi2.h), for each probe.
+TEST(SneeProbe, DirectionsFollowTheirDensity) {
+  const Vec3 x_i(0.2f, -0.1f, 0.3f), omega_in = normalize(Vec3(0.5f, 0.0f, 1.0f));
+  const float g = 0.6f;
+  for (const SneeOptions& options : every_probe()) {
+    TestRng rng(25);
+    const auto r = test::chi2_sphere(
+        [&]() -> std::optional<Vec3> { return probe_sample(options, x_i, omega_in, g, rng); },
+        [&](Vec3 w) { return double(probe_direction_pdf<float>(options, x_i, omega_in, g, w)); },
+        {.axis = options.probe == ProbeDirections::kTowardLights
+                     ? options.probe_targets.target[0].where
+                     : omega_in});
+    EXPECT_GT(r.p_value, kChi2MinPValue) << probe_directions_name(options.probe) << r.report;
+    EXPECT_NEAR(r.integral, 1.0, 1e-3) << probe_directions_name(options.probe);
+  }
+}
+
+// The light-favouring probe's point is what it buys: more exits whose side faces the light.
+// From the centre of a ball, the lobe about a distant light puts (1 + 3 (1 - u)) / 4 of the
+// directions in the light's hemisphere, u the uniform share, against the uniform sphere's half.
+TEST(SneeProbe, LightFavouringProbeFacesTheLight) {
+  SneeOptions options = light_favouring_probe();
+  options.probe_targets.count = 1;
+  options.probe_targets.target[0].share = 1.0f;
+  const Vec3 axis = options.probe_targets.target[0].where;
+  const double u = options.probe_targets.uniform_share;
+  const double expected = u * 0.5 + (1 - u);
+  TestRng rng(26);
+  test::MeanEstimator facing;
+  for (int k = 0; k < 200'000; ++k) {
+    facing.add(dot(probe_sample(options, Vec3(0.0f), Vec3(0, 0, 1), 0.0f, rng), axis) > 0 ? 1 : 0);
+  }
+  EXPECT_LT(test::z_score(facing.mean(), facing.standard_error(), expected, 0), kMaxZ)
+      << facing.mean() << " +- " << facing.standard_error() << " vs " << expected;
+}
+
+// Targets come from the small lights only, by selection probability, at most kMaxProbeTargets.
+TEST(SneeProbe, TargetsAreTheSmallLights) {
+  Scene scene;
+  Light sun;
+  sun.kind = LightKind::kDirectional;
+  sun.direction = normalize(Vec3(1, 1, 1));
+  scene.lights.push_back(sun);
+  Light sky;
+  sky.kind = LightKind::kConstantEnv;
+  scene.lights.push_back(sky);
+  Light bulb;
+  bulb.kind = LightKind::kPoint;
+  bulb.position = Vec3(0, 3, 0);
+  scene.lights.push_back(bulb);
+  Light wide;
+  wide.kind = LightKind::kCone;
+  wide.direction = Vec3(0, 1, 0);
+  wide.half_angle = 0.5f;  // 28.6 degrees: above the default limit
+  scene.lights.push_back(wide);
+  const LightTable lights(scene);
+  const ProbeTargets targets = probe_targets_of(scene, lights, kDefaultLightLimitDegrees);
+  ASSERT_EQ(targets.count, 2);
+  EXPECT_EQ(targets.target[0].where, sun.direction);
+  EXPECT_FALSE(targets.target[0].positional);
+  EXPECT_EQ(targets.target[1].where, bulb.position);
+  EXPECT_TRUE(targets.target[1].positional);
+  EXPECT_FLOAT_EQ(targets.target[0].share + targets.target[1].share, 1.0f);
+  EXPECT_EQ(targets.uniform_share, kDefaultProbeUniformShare);
+
+  Scene sky_only;
+  sky_only.lights.push_back(sky);
+  const ProbeTargets none = probe_targets_of(sky_only, LightTable(sky_only), 180.0f);
+  EXPECT_EQ(none.count, 0);
+  EXPECT_EQ(none.uniform_share, 1.0f);
 }
 
 // --- strategies ------------------------------------------------------------------------------

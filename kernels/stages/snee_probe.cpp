@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "kernels/physics/snee/probe.h"
+#include "kernels/simd/frame_batch.h"
 #include "kernels/simd/hg_sample_batch.h"
 #include "kernels/simd/philox_batch.h"
 #include "kernels/simd/sampling_batch.h"
@@ -15,19 +16,26 @@ namespace snee {
 
 namespace {
 
-// probe_direction_sample (kernels/physics/snee/probe.cpp) for one chunk of the probe queue.
-simd::Vec3Batch probe_directions(const KernelContext& ctx, const PathState& state,
-                                 const simd::SlotChunk& chunk) {
+struct ProbeDraws {
+  simd::Vec3Batch direction;
+  simd::FloatBatch u_rate;  // below SneeOptions::probe_rate: the probe runs
+};
+
+// probe_direction_sample (kernels/physics/snee/probe.h) for one chunk of the probe queue.
+ProbeDraws probe_draws(const KernelContext& ctx, const PathState& state,
+                       const simd::SlotChunk& chunk) {
   // x_i is the path's newest vertex (x_j of its memory): medium_event already pushed it and
   // advanced the event counter past it, so the draw is keyed by the event before.
   const simd::RandomBlockBatch r = simd::random_block(
       ctx.seed, chunk.load(state.pixel), chunk.load(state.sample),
       chunk.load(state.event) - simd::UintBatch(1u), RngPurpose::kSneeProbe, chunk.count());
-  if (ctx.snee.probe == ProbeDirections::kUniformSphere)
-    return simd::sample_uniform_sphere(r.u[0], r.u[1]);
+  const simd::Vec3Batch x_i{chunk.load(state.xj_x), chunk.load(state.xj_y), chunk.load(state.xj_z)};
   const simd::Vec3Batch w_in{chunk.load(state.wjn_x), chunk.load(state.wjn_y),
                              chunk.load(state.wjn_z)};
-  return simd::hg_sample(w_in, load_media(ctx, state, chunk).g, r.u[0], r.u[1]).direction;
+  const simd::FloatBatch g = ctx.snee.probe == ProbeDirections::kPhaseFunction
+                                 ? load_media(ctx, state, chunk).g
+                                 : simd::FloatBatch(0.0f);
+  return {probe_direction_sample(ctx.snee, x_i, w_in, g, r.u[0], r.u[1], r.u[2]), r.u[3]};
 }
 
 }  // namespace
@@ -36,17 +44,26 @@ void snee_probe(const KernelContext& ctx, PathState& state, StageQueues& q,
                 KernelCounters& counters) {
   RayBatch& rays = q.rays;
   rays.clear();
-  for_each_chunk(
-      q.probe.begin(), q.probe.size(), BatchedKernel::kProbeDirections, counters,
-      [&](const simd::SlotChunk& chunk, size_t k) {
-        const simd::Vec3Batch w = probe_directions(ctx, state, chunk);
-        alignas(64) float wx[simd::kLanes], wy[simd::kLanes], wz[simd::kLanes];
-        w.x.store_aligned(wx);
-        w.y.store_aligned(wy);
-        w.z.store_aligned(wz);
-        for (size_t l = 0; l < chunk.count(); ++l)
-          rays.push(state.vertex_j(q.probe[k + l]), {wx[l], wy[l], wz[l]}, 0.0f, kInfinity);
-      });
+  // The probe runs at a vertex with probability probe_rate (its density carries the rate,
+  // probe.h); the slots it skips leave the queue, which then lists the rays' slots in order.
+  for_each_chunk(q.probe.begin(), q.probe.size(), BatchedKernel::kProbeDirections, counters,
+                 [&](const simd::SlotChunk& chunk, size_t k) {
+                   const ProbeDraws draws = probe_draws(ctx, state, chunk);
+                   alignas(64) float wx[simd::kLanes], wy[simd::kLanes], wz[simd::kLanes],
+                       u[simd::kLanes];
+                   draws.direction.x.store_aligned(wx);
+                   draws.direction.y.store_aligned(wy);
+                   draws.direction.z.store_aligned(wz);
+                   draws.u_rate.store_aligned(u);
+                   for (size_t l = 0; l < chunk.count(); ++l) {
+                     const uint32_t s = q.probe[k + l];
+                     if (!(u[l] < ctx.snee.probe_rate)) continue;
+                     q.probe.overwrite(rays.size(), s);
+                     rays.push(state.vertex_j(s), {wx[l], wy[l], wz[l]}, 0.0f, kInfinity);
+                   }
+                 });
+  counters.count(SneeCounter::kProbesSkipped, q.probe.size() - rays.size());
+  q.probe.truncate(rays.size());
   ctx.embree->intersect(rays.rays(), rays.hits(), static_cast<unsigned>(rays.size()), false);
   counters.count_rays(RayKind::kProbe, rays.size());
   counters.count(SneeCounter::kProbes, rays.size());

@@ -6,6 +6,7 @@
 
 #include "kernels/physics/bsdf/fresnel.h"
 #include "kernels/physics/snee/manifold_sphere.h"
+#include "kernels/physics/snee/probe.h"
 #include "scene/shape_bounds.h"
 
 namespace snee {
@@ -181,6 +182,8 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       height(s.camera.height),
       pixel_spread(2.0f * image_half_extents(s.camera).y / static_cast<float>(s.camera.height)),
       textures(s.textures.empty() ? nullptr : std::make_shared<const TextureSet>(s.textures)) {
+  if (snee.probe == ProbeDirections::kTowardLights)
+    snee.probe_targets = probe_targets_of(s, l, snee.light_limit_degrees);
   media.reserve(s.media.size());
   for (const Medium& m : s.media) {
     const GridMedium grid =

@@ -26,6 +26,10 @@ class SlotQueue {
   uint32_t operator[](size_t i) const { return slots_[i]; }
   size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
+  // Compaction in place by a stage that reads the queue front to back: it writes the slots it
+  // keeps at indices no further than it has read, then truncates to their count.
+  void overwrite(size_t i, uint32_t slot) { slots_[i] = slot; }
+  void truncate(size_t n) { size_ = n; }
   const uint32_t* begin() const { return slots_.data(); }
   const uint32_t* end() const { return slots_.data() + size_; }
   // Moves the slots for which first(slot) holds to the front, each group in its order, and

@@ -9,6 +9,7 @@ namespace snee {
 
 enum class SneeCounter : int {
   kProbes,                  // exit-point probe rays traced
+  kProbesSkipped,           // medium vertices the probe rate left without one
   kProbeMissed,             // the probe left the scene (an open boundary)
   kProbeOtherSurface,       // its first hit was not this medium's dielectric boundary
   kTopToBottomConnections,  // TB candidates queued for visibility
@@ -52,6 +53,7 @@ using SneeCounters = std::array<uint64_t, kSneeCounterCount>;
 
 inline const char* snee_counter_name(SneeCounter c) {
   static const char* names[] = {"probes",
+                                "probes_skipped",
                                 "probe_missed",
                                 "probe_other_surface",
                                 "top_to_bottom_connections",

@@ -16,7 +16,28 @@ constexpr std::array<std::pair<std::string_view, Strategy>, kStrategyCount> kNam
     {"mn", Strategy::kManifold},
 }};
 
+constexpr std::array<std::pair<std::string_view, ProbeDirections>, 3> kProbeNames = {{
+    {"uniform", ProbeDirections::kUniformSphere},
+    {"phase", ProbeDirections::kPhaseFunction},
+    {"lights", ProbeDirections::kTowardLights},
+}};
+
 }  // namespace
+
+ProbeDirections probe_directions_named(const std::string& name) {
+  for (const auto& [n, kind] : kProbeNames) {
+    if (name == n) return kind;
+  }
+  throw std::invalid_argument("unknown SNEE probe '" + name +
+                              "' (expected uniform, phase or lights)");
+}
+
+std::string probe_directions_name(ProbeDirections kind) {
+  for (const auto& [n, k] : kProbeNames) {
+    if (k == kind) return std::string(n);
+  }
+  return "uniform";
+}
 
 StrategySet parse_strategy_set(const std::string& list) {
   StrategySet set;

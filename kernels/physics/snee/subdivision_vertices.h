@@ -91,7 +91,7 @@ TopToBottomVertex<F> top_to_bottom_vertex(const TopToBottomExits<F>& e, const Sn
   const F distance = distance_mixture_pdf(options.c_exponential, flight, equiangular, t);
   out.x_j = e.x_k + omega_kj * t;
 
-  const F probe = probe_area_pdf(options.probe, e.omega_in, e.g, e.x_i, e.x_k, e.n_k);
+  const F probe = probe_area_pdf(options, e.omega_in, e.g, e.x_i, e.x_k, e.n_k);
   const F eta = e.interface.eta;
   const F refraction =
       select(e.interface.delta(), select(e.light_delta, t * t, eta * eta * cos_kj / cos_o),
@@ -147,7 +147,7 @@ BottomToTopVertex<F> bottom_to_top_vertex(const BottomToTopExits<F>& e, const Sn
   out.omega_o = omega_o;
   out.refracted = outward.ok && dot(e.ns_k, omega_o) > zero && dot(e.n_k, omega_o) > zero;
 
-  const F probe = probe_area_pdf(options.probe, e.omega_in, e.g, e.x_i, e.x_k, e.n_k);
+  const F probe = probe_area_pdf(options, e.omega_in, e.g, e.x_i, e.x_k, e.n_k);
   const F btdf =
       select(e.interface.delta(), one, transmission_pair(e.interface, local_kj, local_o).outward);
   out.pdf = probe * placed.pdf * btdf;

@@ -89,7 +89,7 @@ SuffixWeighing<F> weigh_suffix(const SuffixLanes<F>& s, const SneeOptions& optio
   // The condition every density and the integrand share.
   const MaskOf<F> exits = out.valid && out.crosses;
 
-  const F probe = probe_area_pdf(options.probe, s.omega_in, s.g, omega_ik, d2, s.n_k);
+  const F probe = probe_area_pdf(options, s.x_i, s.omega_in, s.g, omega_ik, d2, s.n_k);
 
   // The medium: both phase functions and both segments' transmittance, shared by the walk,
   // the distance sampler and the integrand.
