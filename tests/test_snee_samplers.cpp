@@ -287,8 +287,9 @@ TEST(SneeProbe, DirectionsFollowTheirDensity) {
 }
 
 // The light-favouring probe's point is what it buys: more exits whose side faces the light.
-// From the centre of a ball, the lobe about a distant light puts (1 + 3 (1 - u)) / 4 of the
-// directions in the light's hemisphere, u the uniform share, against the uniform sphere's half.
+// From the centre of a ball, the light-favouring probe puts u / 2 + (1 - u) of its directions in
+// the light's hemisphere (u the uniform share; the lobe never leaves it), against the uniform
+// sphere's half.
 TEST(SneeProbe, LightFavouringProbeFacesTheLight) {
   SneeOptions options = light_favouring_probe();
   options.probe_targets.count = 1;
