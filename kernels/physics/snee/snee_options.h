@@ -60,8 +60,9 @@ enum class MisHeuristic : uint8_t {
 inline constexpr float kDefaultLightLimitDegrees = 15.0f;
 inline constexpr float kDefaultManifoldRate = 0.125f;
 // Measured on the paper grid's sphere and bunny under the cone and the directional light
-// (docs/method.md 3.2, docs/results.md): at a quarter of the vertices the probe and the
-// subdivision cost half as much, and the error grows far less than the time falls.
+// (docs/method.md 3.2, docs/results.md): at a quarter of the vertices the probe, the
+// subdivision and their rays cost a third as much, and the error grows far less than the time
+// falls.
 inline constexpr float kDefaultProbeRate = 0.25f;
 // Levels (reflections and crossings) of the reflection chains behind a flat-shaded mesh: each
 // level holds about twice the fragments of the one below and takes as much longer to build, and
