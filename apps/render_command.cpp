@@ -221,6 +221,19 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->check(finite_in_range(0, 1))
       ->capture_default_str()
       ->group(snee);
+  c.add_option("--snee-guide-rate", options_.snee.guide_rate,
+               "Probability that the guided exit runs at a medium vertex whose parent is a "
+               "surface vertex, inside a sphere boundary: it draws the direction toward where "
+               "the boundary refracts a small light (docs/method.md 3.15); 0 turns it off")
+      ->check(finite_in_range(0, 1))
+      ->capture_default_str()
+      ->group(snee);
+  c.add_option("--snee-guide-cap", options_.snee.guide_cap_degrees,
+               "Half-angle in degrees of the cone the guided exit draws its direction in")
+      ->check(finite_positive())
+      ->check(finite_in_range(0, 90))
+      ->capture_default_str()
+      ->group(snee);
   c.add_option("--snee-strategies", snee_strategies_,
                "Comma-separated strategies that share the transport SNEE handles: tb "
                "(top-to-bottom), bt (bottom-to-top), ub (BSDF-sampled exit), ul (light-sampled "

@@ -111,7 +111,9 @@ nlohmann::ordered_json snee_options_json(const SneeOptions& snee) {
           {"reflection_chains", snee.reflection_chains},
           {"mesh_chain_levels", snee.mesh_chain_levels},
           {"probe_rate", snee.probe_rate},
-          {"manifold_rate", snee.manifold_rate}};
+          {"manifold_rate", snee.manifold_rate},
+          {"guide_rate", snee.guide_rate},
+          {"guide_cap_degrees", snee.guide_cap_degrees}};
 }
 
 void write_json_file(const nlohmann::ordered_json& json, const std::string& path) {

@@ -46,30 +46,6 @@ Film render_with(const Scene& scene, const std::string& integrator, int spp, uin
   return render(scene, options).film;
 }
 
-// A 2 x 2 square emitter at height 3 above the unit sphere, emitting downward, as an area light.
-void add_panel_emitter(Scene& scene, Rgb emission) {
-  Shape emitter;
-  emitter.name = "panel";
-  emitter.kind = ShapeKind::kMesh;
-  emitter.mesh.positions = {{-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, {-1, 3, 1}};
-  emitter.mesh.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise from below: emits downward
-  emitter.emission = emission;
-  emitter.closed = false;
-  emitter.material = 0;
-  scene.shapes.push_back(emitter);
-  Light panel;
-  panel.kind = LightKind::kArea;
-  panel.shape = static_cast<int>(scene.shapes.size() - 1);
-  scene.lights.push_back(panel);
-}
-
-// The whole image and each of its 4x4 blocks (test::expect_same_region).
-int expect_same_image(const Film& a, const Film& b, const std::string& what) {
-  const int edge = a.width / 4;
-  return test::expect_same_region(a, b, std::vector<bool>(a.mean.size(), true), edge, edge * edge,
-                                  what);
-}
-
 struct GridCase {
   const char* scene;
   int pt_spp;  // pt needs many more samples under the small cone, the more the smoother
@@ -93,7 +69,7 @@ TEST_P(SneeMatchesPathTracer, RegionByRegion) {
   const Film snee = render_with(scene, "snee", c.snee_spp, 102);
   const std::vector<bool> all(pt.mean.size(), true);
   ASSERT_GT(test::region_mean(snee, all).mean, 0.01) << "a black image proves nothing";
-  EXPECT_GE(expect_same_image(pt, snee, c.scene), c.min_converged_blocks)
+  EXPECT_GE(test::expect_same_image(pt, snee, c.scene), c.min_converged_blocks)
       << "too few converged blocks";
 }
 
@@ -125,7 +101,8 @@ void expect_isolated_strategies_agree(const char* scene_name,
     const Film film = render_with(scene, "snee", 256, seed++, StrategySet::only(strategy));
     const std::string what =
         std::string(scene_name) + ", only " + strategy_set_name(StrategySet::only(strategy));
-    EXPECT_GE(expect_same_image(four_way, film, what), 4) << what << ": too few converged blocks";
+    EXPECT_GE(test::expect_same_image(four_way, film, what), 4)
+        << what << ": too few converged blocks";
   }
 }
 
@@ -154,7 +131,7 @@ TEST(SneeProbe, LightFavouringProbeMatchesUniform) {
                                     ProbeDirections::kTowardLights);
     const std::vector<bool> all(uniform.mean.size(), true);
     ASSERT_GT(test::region_mean(lights, all).mean, 0.01) << "a black image proves nothing";
-    EXPECT_GE(expect_same_image(uniform, lights, name + what), 4)
+    EXPECT_GE(test::expect_same_image(uniform, lights, name + what), 4)
         << name << what << ": too few converged blocks";
   };
   lit("sphere-cone-r0.2", "", StrategySet::all(), 301);
@@ -180,8 +157,8 @@ TEST(SneeLimits, RoughnessToZeroApproachesSmooth) {
   Scene smooth = grid_scene("sphere-cone-smooth");
   Scene nearly = smooth;
   nearly.materials[0].roughness = 1e-3f;
-  EXPECT_GE(expect_same_image(render_with(smooth, "snee", 512, 301),
-                              render_with(nearly, "snee", 512, 302), "alpha 1e-3 vs smooth"),
+  EXPECT_GE(test::expect_same_image(render_with(smooth, "snee", 512, 301),
+                                    render_with(nearly, "snee", 512, 302), "alpha 1e-3 vs smooth"),
             4);
 }
 
@@ -202,10 +179,10 @@ Scene cone_of_same_irradiance(const Scene& directional, float degrees) {
 TEST(SneeLimits, ConeToZeroApproachesDirectional) {
   const Scene directional = grid_scene("sphere-directional-r0.2");
   const Scene cone = cone_of_same_irradiance(directional, 0.3f);
-  EXPECT_GE(
-      expect_same_image(render_with(directional, "snee", 256, 401),
-                        render_with(cone, "snee", 256, 402), "0.3-degree cone vs directional"),
-      4);
+  EXPECT_GE(test::expect_same_image(render_with(directional, "snee", 256, 401),
+                                    render_with(cone, "snee", 256, 402),
+                                    "0.3-degree cone vs directional"),
+            4);
 }
 
 // Spec 5.8: smooth boundary, directional light. Light reaches the medium only through the
@@ -227,19 +204,13 @@ TEST(SneeDeltaDelta, SmoothDirectionalIsLitOnlyBySnee) {
 // light beside it, behind the rough 0.2 interface where pt converges.
 TEST(SneeFiniteLights, AreaAndPointLightsMatchPathTracer) {
   Scene scene = grid_scene("sphere-cone-r0.2");
-  scene.lights.clear();
-  add_panel_emitter(scene, Rgb(1.5f));
-  Light bulb;
-  bulb.kind = LightKind::kPoint;
-  bulb.position = {2.5f, 0.5f, 1.5f};
-  bulb.intensity = Rgb(6.0f);
-  scene.lights.push_back(bulb);
+  test::light_by_panel_and_bulb(scene);
 
   const Film pt = render_with(scene, "pt", 512, 601);
   const Film snee = render_with(scene, "snee", 256, 602);
   const std::vector<bool> object = test::sphere_mask(scene);
   ASSERT_GT(test::region_mean(snee, object).mean, 0.01) << "a black image proves nothing";
-  EXPECT_GE(expect_same_image(pt, snee, "area and point lights"), 4);
+  EXPECT_GE(test::expect_same_image(pt, snee, "area and point lights"), 4);
 }
 
 // Light selection changes only the variance: a dim sky, a bright point light, a cone and a
@@ -264,7 +235,7 @@ TEST(LightSelection, PowerMatchesUniform) {
   bulb.position = {2.5f, 1.5f, 1.5f};
   bulb.intensity = Rgb(20.0f);
   scene.lights.push_back(bulb);
-  add_panel_emitter(scene, Rgb(0.5f));
+  test::add_panel_emitter(scene, Rgb(0.5f));
 
   for (const char* integrator : {"pt", "snee"}) {
     RenderOptions options;
@@ -277,7 +248,8 @@ TEST(LightSelection, PowerMatchesUniform) {
     options.seed = 702;
     const Film power = render(scene, options).film;
     ASSERT_GT(test::region_mean(power, test::sphere_mask(scene)).mean, 0.01);
-    EXPECT_GE(expect_same_image(uniform, power, std::string(integrator) + " uniform vs power"), 4);
+    EXPECT_GE(
+        test::expect_same_image(uniform, power, std::string(integrator) + " uniform vs power"), 4);
   }
 }
 
@@ -297,8 +269,8 @@ TEST(SneeManifold, EachStrategyAloneMatchesBoth) {
     const Film both = render_only(StrategySet::all(), 701);
     const Film tb = render_only(StrategySet::only(Strategy::kTopToBottom), 702);
     const Film mn = render_only(StrategySet::only(Strategy::kManifold), 703);
-    EXPECT_GE(expect_same_image(both, tb, std::string(name) + ": top-to-bottom alone"), 4);
-    EXPECT_GE(expect_same_image(both, mn, std::string(name) + ": manifold alone"), 4);
+    EXPECT_GE(test::expect_same_image(both, tb, std::string(name) + ": top-to-bottom alone"), 4);
+    EXPECT_GE(test::expect_same_image(both, mn, std::string(name) + ": manifold alone"), 4);
   }
 }
 
@@ -317,7 +289,7 @@ TEST(SneeManifold, RunningItAtEveryVertexGivesTheSameImage) {
     options.snee.manifold_rate = 1.0f;
     options.seed = 722;
     const Film always = render(scene, options).film;
-    EXPECT_GE(expect_same_image(sometimes, always, std::string(name) + ": rate 1"), 4);
+    EXPECT_GE(test::expect_same_image(sometimes, always, std::string(name) + ": rate 1"), 4);
   }
 }
 
@@ -588,8 +560,8 @@ TEST(SneeManifold, PointAndSpotLightsEachStrategyAloneMatchesBoth) {
           render_with(scene, "snee", 256, 732, StrategySet::only(Strategy::kTopToBottom));
       const Film mn = render_with(scene, "snee", 64, 733, StrategySet::only(Strategy::kManifold));
       ASSERT_GT(test::region_mean(both, test::sphere_mask(scene)).mean, 0.005) << name;
-      EXPECT_GE(expect_same_image(both, tb, name + ": top-to-bottom alone"), 4);
-      EXPECT_GE(expect_same_image(both, mn, name + ": manifold alone"), 4);
+      EXPECT_GE(test::expect_same_image(both, tb, name + ": top-to-bottom alone"), 4);
+      EXPECT_GE(test::expect_same_image(both, mn, name + ": manifold alone"), 4);
     }
   }
 }

@@ -23,6 +23,9 @@ enum class RngPurpose : uint32_t {
   kSneeBottomToTop,          // middle vertex (4)
   kSneeBottomToTopBtdf,      // outward microfacet normal (2)
   kSneeManifold,             // the manifold strategy's light selection (3), its chain choice
+  kSneeGuidedExit,           // the guided exit's rate and axis, its cap direction (2)
+  kSneeGuidedExitLight,      // its light sample (3), its BSDF sample's lobe
+  kSneeGuidedExitBsdf,       // its BSDF sample's microfacet normal (2)
   kCount
 };
 

@@ -10,6 +10,7 @@
 #include "kernels/simd/vec3_batch.h"
 #include "kernels/stages/exit_event.h"
 #include "kernels/stages/first_hit_aovs.h"
+#include "kernels/stages/guided_exit.h"
 #include "kernels/stages/stages.h"
 #include "kernels/wavefront/batched_pass.h"
 #include "kernels/wavefront/medium_lanes.h"
@@ -231,7 +232,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     const Vec3 x = keep_clear_of_boundary(ctx, state, s, {flights.x[k], flights.y[k], flights.z[k]},
                                           flights.t[k]);
     state.depth[s] += 1;
-    state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
+    state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped | kPathAfterGuidedExit);
     state.push_vertex(s, x, w_before, true);
     close_aov_chain(state, s, flights.t[k], single_scattering_albedo(m, x), -w_before);
     if (static_cast<int>(state.depth[s]) >= ctx.max_depth || is_black(state.throughput(s))) {
@@ -250,6 +251,7 @@ void medium_event(const KernelContext& ctx, PathState& state, StageQueues& q,
     // the probe stage reads x_i from the path's vertex memory and draws at this event.
     if (ctx.integrator == Integrator::kSnee && !m.straight_nee && m.snee_eligible()) {
       connect_manifold(ctx, state, s, m, q.shadow, counters);
+      connect_guided_exit(ctx, state, s, m, q.shadow, counters);
       // Top-to-bottom and bottom-to-top place x_j one event further and leave from it: the
       // walk would stop at x_j if that were the depth limit, so they stop there too.
       if (static_cast<int>(state.depth[s]) + 1 < ctx.max_depth) q.probe.push(s);

@@ -1,4 +1,5 @@
 #include "kernels/stages/exit_event.h"
+#include "kernels/stages/guided_exit.h"
 #include "kernels/stages/stages.h"
 #include "kernels/wavefront/path_ops.h"
 
@@ -18,7 +19,12 @@ void shade_escaped(const KernelContext& ctx, PathState& state, StageQueues& q) {
       const Rgb le = ctx.lights->escaped_radiance(d);
       if (!is_black(le)) {
         const float pdf = state.mis_pdf[s];
-        const float weight = pdf > 0 ? power_heuristic(pdf, ctx.lights->escaped_pdf(d)) : 1.0f;
+        const float weight =
+            (flags & kPathAfterGuidedExit) != 0
+                ? walk_bsdf_sample_weight(state.guide_ratio[s], pdf, ctx.lights->escaped_pdf(d),
+                                          !(pdf > 0), true)
+            : pdf > 0 ? power_heuristic(pdf, ctx.lights->escaped_pdf(d))
+                      : 1.0f;
         state.add_radiance(s, state.throughput(s) * le * weight);
       }
     }

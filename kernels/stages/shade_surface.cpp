@@ -10,6 +10,7 @@
 #include "kernels/simd/slot_chunk.h"
 #include "kernels/stages/exit_event.h"
 #include "kernels/stages/first_hit_aovs.h"
+#include "kernels/stages/guided_exit.h"
 #include "kernels/stages/shading_normal.h"
 #include "kernels/stages/stages.h"
 #include "kernels/stages/surface_texture.h"
@@ -179,7 +180,7 @@ bool needs_tracking(const KernelContext& ctx, int32_t medium) {
 // normal that `frame` is built on.
 void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p, Vec3 n, Vec3 ns,
                  const Frame& frame, Vec3 wo_local, const SurfaceInfo& info, ShadowQueue& shadow,
-                 const ExitEvent* exit, const std::array<float, 3>& u) {
+                 const ExitEvent* exit, float guide_ratio, const std::array<float, 3>& u) {
   const LightSample ls = ctx.lights->sample(p, u[0], {u[1], u[2]});
   if (!ls.valid || ls.pdf <= 0) return;
   if (info.smooth_shading && !shading_sides_agree(-state.direction(s), ls.wi, n, ns)) {
@@ -223,7 +224,12 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
                               unweighted, seg, shadow);
     return;
   }
-  const float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, bsdf_pdf);
+  // A light sample through the boundary that the guided exit also takes (guided_exit.h).
+  const float weight = guide_ratio > 0 && wi_local.z > 0
+                           ? walk_light_sample_weight(guide_ratio, ls.pdf, bsdf_pdf, ls.delta,
+                                                      std::isinf(ls.distance))
+                       : ls.delta ? 1.0f
+                                  : power_heuristic(ls.pdf, bsdf_pdf);
   shadow.add_connection({ConnectionKind::kLight, s, seg, 1, -1, unweighted * weight, Rgb(0.0f)});
 }
 
@@ -285,7 +291,11 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
         connect_exit_emission(ctx, state, s, d, le, light_pdf(), false, q.shadow);
       } else {
         const float pdf = state.mis_pdf[s];
-        const float weight = pdf > 0 ? power_heuristic(pdf, light_pdf()) : 1.0f;
+        const float weight =
+            (state.flags[s] & kPathAfterGuidedExit) != 0
+                ? walk_bsdf_sample_weight(state.guide_ratio[s], pdf, light_pdf(), !(pdf > 0), false)
+            : pdf > 0 ? power_heuristic(pdf, light_pdf())
+                      : 1.0f;
         state.add_radiance(s, state.throughput(s) * le * weight);
       }
     }
@@ -301,7 +311,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       q.extend.push(s);
       continue;
     }
-    state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped);
+    state.flags[s] &= ~(kPathAfterSneeExit | kPathLightSkipped | kPathAfterGuidedExit);
     const bool delta_bsdf = info.delta();
     if (delta_bsdf) {
       extend_aov_chain(state, s, state.hit_t[s]);
@@ -312,6 +322,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
 
     // The exit-event bookkeeping of SNEE needs the vertices before this one.
     const ExitEvent exit = make_exit_event(ctx, state, s, p, n, ns, info, geom);
+    const float guide_ratio = walk_guide_ratio(ctx, state, s, p, info, geom);
     if (exit.snee_possible) counters.count(SneeCounter::kFourWayExitEvents);
     state.depth[s] += 1;
     state.push_vertex(s, p, d, false);
@@ -328,7 +339,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
     const Vec3 wo_local = frame.to_local(-d);
     if (!delta_bsdf && !ctx.lights->empty() && !exit.light_handled_elsewhere) {
       surface_nee(ctx, state, s, p, n, ns, frame, wo_local, info, q.shadow,
-                  exit.snee_possible ? &exit : nullptr,
+                  exit.snee_possible ? &exit : nullptr, guide_ratio,
                   {hits.u_light0[k], hits.u_light1[k], hits.u_light2[k]});
     }
 
@@ -359,6 +370,10 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
       state.eta_scale[s] *= entering ? eta2 : 1.0f / eta2;
       state.medium[s] = medium_on_side(info, wi, n);
       track_inside(state, s, info, wi, n);
+      if (!entering && guide_ratio > 0) {
+        state.flags[s] |= kPathAfterGuidedExit;
+        state.guide_ratio[s] = guide_ratio;
+      }
       if (!entering && exit.snee_possible) {
         remember_exit(state, s, exit);
       } else if (!entering && exit.light_handled_elsewhere) {

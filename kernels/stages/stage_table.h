@@ -38,10 +38,10 @@ namespace snee {
   /* medium_event -> surface | escaped (flight reached the hit), or extend (scattered), or       \
      retire (depth limit, black, roulette); a scattered slot in a SNEE-eligible (homogeneous)    \
      medium may also go to probe, so it sits in two queues. With grid media it reorders its      \
-     own input queue, grid slots last. Queues medium NEE connections. Reads ray, hit, medium,    \
-     throughput; writes throughput, depth, flags, vertex memory, mis_pdf, the new ray and        \
-     event + 1 (after its draws). Draws kFreeFlight, kPhase, kRussianRoulette, kLightSample at   \
-     the event. */                                                                               \
+     own input queue, grid slots last. Queues medium NEE, manifold and guided-exit connections.  \
+     Reads ray, hit, medium, throughput; writes throughput, depth, flags, vertex memory,         \
+     mis_pdf, the new ray and event + 1 (after its draws). Draws kFreeFlight, kPhase,            \
+     kRussianRoulette, kLightSample, kSneeManifold and kSneeGuidedExit* at the event. */         \
   X(kMediumEvent, "medium_event", "medium", 2, &StageQueues::medium, medium_event)               \
   /* snee_probe -> subdivide (the probe found the medium's own boundary from inside). Reads      \
      vertex memory (x_i is the newest vertex, x_j of the memory) and the medium; writes no       \
@@ -54,11 +54,13 @@ namespace snee {
   X(kSubdivision, "subdivision", "subdiv", 6, &StageQueues::subdivide, subdivision)              \
   /* shade_surface -> extend (null crossing or sampled BSDF) or retire; queues NEE and SNEE      \
      exit connections. Reads hit, ray, vertex memory and flags; writes radiance (emission),      \
-     throughput, depth, vertex memory, medium, flags, exit memory, mis_pdf, eta_scale, the new   \
-     ray and event + 1. Draws kBsdf, kLightSample, kRussianRoulette at the event. */             \
+     throughput, depth, vertex memory, medium, flags, exit memory, guide_ratio, mis_pdf,         \
+     eta_scale, the new ray and event + 1. Draws kBsdf, kLightSample, kRussianRoulette at the    \
+     event. */                                                                                   \
   X(kShadeSurface, "shade_surface", "surface", 3, &StageQueues::surface, shade_surface)          \
   /* shade_escaped -> retire; an escape after a SNEE exit queues its MIS-weighted connection.    \
-     Reads ray, flags, throughput, mis_pdf, exit memory; writes radiance. Draws nothing. */      \
+     Reads ray, flags, throughput, mis_pdf, exit memory, guide_ratio; writes radiance. Draws     \
+     nothing. */                                                                                 \
   X(kShadeEscaped, "shade_escaped", "escaped", 4, &StageQueues::escaped, shade_escaped)          \
   /* shadow_connect -> radiance. Traces every queued connection's segments and adds the clear    \
      ones' values to their slots' radiance, in queue order (the bits depend on it). Runs after   \

@@ -182,7 +182,7 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
       height(s.camera.height),
       pixel_spread(2.0f * image_half_extents(s.camera).y / static_cast<float>(s.camera.height)),
       textures(s.textures.empty() ? nullptr : std::make_shared<const TextureSet>(s.textures)) {
-  if (snee.probe == ProbeDirections::kTowardLights)
+  if (snee.probe == ProbeDirections::kTowardLights || snee.guide_rate > 0)
     snee.probe_targets = probe_targets_of(s, l, snee.light_limit_degrees);
   media.reserve(s.media.size());
   for (const Medium& m : s.media) {
@@ -220,9 +220,18 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
     const Shape& shape = s.shapes[i];
     const SurfaceInfo& info = surfaces[i];
     if (shape.interior_medium < 0 || info.kind != MaterialKind::kDielectric ||
-        !info.dielectric.delta() || info.dielectric.eta == 1.0f) {
+        info.dielectric.eta == 1.0f) {
       continue;
     }
+    MediumInfo& inside = media[static_cast<size_t>(shape.interior_medium)];
+    if (integ == Integrator::kSnee && snee_.guide_rate > 0 && inside.snee_eligible() &&
+        boundaries[static_cast<size_t>(shape.interior_medium)] == 1 &&
+        shape.kind == ShapeKind::kSphere && info.roughness_texture < 0) {
+      inside.guide_boundary = static_cast<int32_t>(i);
+      inside.guide_centre = shape.center;
+      inside.guide_radius = shape.radius;
+    }
+    if (!info.dielectric.delta()) continue;
     MediumInfo& m = media[static_cast<size_t>(shape.interior_medium)];
     // The manifold strategy is SNEE's; a grid medium runs none of SNEE.
     if (!m.snee_eligible()) continue;

@@ -117,6 +117,12 @@ struct MediumInfo {
   // Whether no other shape reaches into a sphere boundary (no bounding box meets it), so a path
   // inside it cannot be blocked: its reflection chains then need only their light segment.
   bool manifold_interior_clear = false;
+  // The sphere that is this medium's only boundary, a dielectric of any roughness (without a
+  // roughness texture) and eta != 1, where the guided exit runs (docs/method.md 3.15); -1 if
+  // none, or for integrators other than snee.
+  int32_t guide_boundary = -1;
+  Vec3 guide_centre{0.0f, 0.0f, 0.0f};
+  float guide_radius = 0.0f;
   // How often a vertex searches for reflection chains (chain_search_probability).
   double chain_search = 0.0;
 

@@ -16,12 +16,13 @@ namespace snee {
 
 // Flags of a path slot.
 enum PathFlags : uint32_t {
-  kPathMediumVertexJ = 1u << 0,  // the previous vertex x_j was a medium scattering vertex
-  kPathMediumVertexI = 1u << 1,  // the vertex before it, x_i, was a medium scattering vertex
-  kPathAfterSneeExit = 1u << 2,  // the ray left a medium by an exit SNEE competes with
-  kPathLightSkipped = 1u << 3,   // "sla": any light this ray reaches was counted by NEE
-  kPathAovOpen = 1u << 4,        // AOVs: the camera ray's specular chain has not ended yet
-  kPathInsideVolume = 1u << 5,   // the ray is inside a closed refracting or null boundary
+  kPathMediumVertexJ = 1u << 0,    // the previous vertex x_j was a medium scattering vertex
+  kPathMediumVertexI = 1u << 1,    // the vertex before it, x_i, was a medium scattering vertex
+  kPathAfterSneeExit = 1u << 2,    // the ray left a medium by an exit SNEE competes with
+  kPathLightSkipped = 1u << 3,     // "sla": any light this ray reaches was counted by NEE
+  kPathAovOpen = 1u << 4,          // AOVs: the camera ray's specular chain has not ended yet
+  kPathInsideVolume = 1u << 5,     // the ray is inside a closed refracting or null boundary
+  kPathAfterGuidedExit = 1u << 6,  // the ray left a medium by an exit the guided exit competes with
 };
 
 // X(type, name): one SoA array per field.
@@ -60,7 +61,8 @@ enum PathFlags : uint32_t {
   X(float, exit_win_x) X(float, exit_win_y) X(float, exit_win_z)  /* arriving at that x_i */   \
   X(float, exit_nk_x) X(float, exit_nk_y) X(float, exit_nk_z)     /* normal at the exit x_k */ \
   X(float, exit_nsk_x) X(float, exit_nsk_y) X(float, exit_nsk_z)  /* its shading normal */     \
-  X(float, exit_alpha)                           /* the interface's roughness at x_k */
+  X(float, exit_alpha)                           /* the interface's roughness at x_k */       \
+  X(float, guide_ratio)        /* guided exit's density over the walk's at that exit */
 // clang-format on
 
 struct PathState {

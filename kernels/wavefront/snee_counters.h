@@ -46,6 +46,10 @@ enum class SneeCounter : int {
   kManifoldChainsUnsupported,
   kManifoldExitsSubsampled,
   kManifoldExitsDropped,
+  // The guided exit (docs/method.md 3.15): connections queued (light- and BSDF-sampled), and
+  // vertices where it ran and found no direction (no refraction toward a small light).
+  kGuidedExitConnections,
+  kGuidedExitNoAxis,
   kCount
 };
 inline constexpr int kSneeCounterCount = static_cast<int>(SneeCounter::kCount);
@@ -78,7 +82,9 @@ inline const char* snee_counter_name(SneeCounter c) {
                                 "manifold_reflection_dropped",
                                 "manifold_chains_unsupported",
                                 "manifold_exits_subsampled",
-                                "manifold_exits_dropped"};
+                                "manifold_exits_dropped",
+                                "guided_exit_connections",
+                                "guided_exit_no_axis"};
   static_assert(sizeof(names) / sizeof(names[0]) == kSneeCounterCount);
   return names[static_cast<int>(c)];
 }

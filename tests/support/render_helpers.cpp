@@ -126,6 +126,37 @@ int expect_same_region(const Film& a, const Film& b, const std::vector<bool>& ma
   return compared;
 }
 
+int expect_same_image(const Film& a, const Film& b, const std::string& what) {
+  const int edge = a.width / 4;
+  return expect_same_region(a, b, std::vector<bool>(a.mean.size(), true), edge, edge * edge, what);
+}
+
+void add_panel_emitter(Scene& scene, Rgb emission) {
+  Shape emitter;
+  emitter.name = "panel";
+  emitter.kind = ShapeKind::kMesh;
+  emitter.mesh.positions = {{-1, 3, -1}, {1, 3, -1}, {1, 3, 1}, {-1, 3, 1}};
+  emitter.mesh.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise from below: emits downward
+  emitter.emission = emission;
+  emitter.closed = false;
+  emitter.material = 0;
+  scene.shapes.push_back(emitter);
+  Light panel;
+  panel.kind = LightKind::kArea;
+  panel.shape = static_cast<int>(scene.shapes.size() - 1);
+  scene.lights.push_back(panel);
+}
+
+void light_by_panel_and_bulb(Scene& scene) {
+  scene.lights.clear();
+  add_panel_emitter(scene, Rgb(1.5f));
+  Light bulb;
+  bulb.kind = LightKind::kPoint;
+  bulb.position = {2.5f, 0.5f, 1.5f};
+  bulb.intensity = Rgb(6.0f);
+  scene.lights.push_back(bulb);
+}
+
 void expect_renders_to_one(const Film& film) {
   // Every pixel is judged, background included (it sees the environment directly).
   const std::vector<bool> all(film.mean.size(), true);

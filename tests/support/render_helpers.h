@@ -42,6 +42,14 @@ void expect_renders_to_one(const Film& film);
 // not bias. Returns the number of blocks compared.
 int expect_same_region(const Film& a, const Film& b, const std::vector<bool>& mask, int block,
                        int min_pixels, const std::string& what);
+// expect_same_region over the whole image, in blocks of a quarter of its width.
+int expect_same_image(const Film& a, const Film& b, const std::string& what);
+// Adds a 2 x 2 square emitter at height 3 above the unit sphere, emitting downward, as an area
+// light.
+void add_panel_emitter(Scene& scene, Rgb emission);
+// Replaces the lights by that panel (emission 1.5) and a point light of intensity 6 at
+// (2.5, 0.5, 1.5): an area light and a finite delta light over the unit sphere.
+void light_by_panel_and_bulb(Scene& scene);
 // Square blocks of `block` pixels intersected with a mask (blocks with fewer than min_pixels
 // masked pixels are dropped).
 std::vector<std::vector<bool>> blocks(const Film& film, const std::vector<bool>& mask, int block,

@@ -68,6 +68,12 @@ inline constexpr float kDefaultProbeRate = 0.25f;
 // level holds about twice the fragments of the one below and takes as much longer to build, and
 // four hold most of the light of the paper grid's bunny (docs/method.md 3.14).
 inline constexpr int kDefaultMeshChainLevels = 4;
+// The guided exit's cap (docs/method.md 3.15): wide enough to hold the directions that a glossy
+// boundary refracts toward a light of a few degrees.
+inline constexpr float kDefaultGuideCapDegrees = 5.0f;
+// Measured on the paper grid's sphere (docs/method.md 3.15): from a tenth to all of the
+// vertices the error barely moves, and a quarter costs half the time of every one.
+inline constexpr float kDefaultGuideRate = 0.25f;
 
 struct SneeOptions {
   ProbeDirections probe = ProbeDirections::kUniformSphere;
@@ -104,6 +110,12 @@ struct SneeOptions {
   // so most of its solves (a few microseconds each) can be skipped; its density carries the
   // rate, so the weights still sum to one. The default is measured (docs/method.md 3.10).
   float manifold_rate = kDefaultManifoldRate;
+  // The probability that the guided exit runs at a medium vertex whose parent is a surface
+  // vertex, inside a sphere boundary (docs/method.md 3.15); 0 turns it off. Its density carries
+  // the rate, so the walk's exit events weigh themselves against it at any rate.
+  float guide_rate = kDefaultGuideRate;
+  // Half-angle in degrees of the cap the guided exit draws its direction in.
+  float guide_cap_degrees = kDefaultGuideCapDegrees;
 };
 
 // Parses a comma-separated list of tb, bt, ub, ul (e.g. "tb,bt"); throws std::invalid_argument
