@@ -223,7 +223,8 @@ RenderCommand::RenderCommand(CLI::App& parent)
       ->group(snee);
   c.add_option("--snee-guide-rate", options_.snee.guide_rate,
                "Probability that the guided exit runs at a medium vertex whose parent is a "
-               "surface vertex, inside a sphere boundary: it draws the direction toward where "
+               "surface vertex, inside a sphere or closed flat-shaded mesh boundary: it draws the "
+               "direction toward where "
                "the boundary refracts a small light (docs/method.md 3.15); 0 turns it off")
       ->check(finite_in_range(0, 1))
       ->capture_default_str()

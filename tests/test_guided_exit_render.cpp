@@ -1,10 +1,11 @@
 // Whole-image checks of the guided exit (docs/method.md 3.15): it changes only the variance, so
 // snee with it renders the image of snee without it where both converge (the rough sphere under
 // the cone, the glossy sphere under the directional light, where the walk's light samples work,
-// and the smooth sphere under a wide cone, where the walk's refracted exits find it), and with an
-// area light and a point light, whose hits the guided exit shares only in part; its rate changes
-// nothing either; and its images are bitwise the same on any number of threads and queue size.
-// Tolerances are multiples of the standard error measured from the films' per-pixel variance.
+// and the smooth sphere under a wide cone, where the walk's refracted exits find it), inside the
+// bunny's flat-shaded mesh, and with an area light and a point light, whose hits the guided exit
+// shares only in part; its rate changes nothing either; and its images are bitwise the same on any
+// number of threads and queue size. Tolerances are multiples of the standard error measured from
+// the films' per-pixel variance.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,6 +53,18 @@ TEST(GuidedExit, MatchesTheWalkUnderTheCone) {
   const Scene scene = sphere_scene("sphere-cone-r0.2");
   expect_guide_changes_nothing(scene, "sphere-cone-r0.2", 256, 11);
   expect_guide_changes_nothing(scene, "sphere-cone-r0.2, single scattering", 2048, 13, 3);
+}
+
+// A closed flat-shaded mesh: the axes come from its facets' refracted beams and the exit point
+// from a ray.
+TEST(GuidedExit, MatchesTheWalkInsideAMesh) {
+  Scene scene = load_builtin_scene("bunny-cone-r0.2").scene;
+  scene.camera.width = scene.camera.height = 48;
+  const Film without = render_guided(scene, 0.0f, 256, 61);
+  const Film with = render_guided(scene, 1.0f, 256, 62);
+  const std::vector<bool> all(with.mean.size(), true);
+  ASSERT_GT(test::region_mean(with, all).mean, 0.005) << "a black image proves nothing";
+  EXPECT_GE(test::expect_same_image(without, with, "bunny-cone-r0.2"), 4);
 }
 
 // A delta light: the walk's and the guided exit's light samples share the paths.

@@ -27,8 +27,53 @@ StepDensities step_densities(const KernelContext& ctx, const MediumInfo& m, cons
 }
 
 ExitGuide guide_at(const KernelContext& ctx, const MediumInfo& m, Vec3 x_j) {
-  const float eta = ctx.surfaces[static_cast<size_t>(m.guide_boundary)].dielectric.eta;
-  return exit_guide(ctx.snee.probe_targets, m.guide_centre, m.guide_radius, eta, x_j);
+  const ProbeTargets& targets = ctx.snee.probe_targets;
+  if (!m.guide_mesh) {
+    const float eta = ctx.surfaces[static_cast<size_t>(m.guide_boundary)].dielectric.eta;
+    return exit_guide(targets, m.guide_centre, m.guide_radius, eta, x_j);
+  }
+  ExitGuide guide;
+  for (int t = 0; t < targets.count; ++t) {
+    const int tree = m.guide_tree_of_target[static_cast<size_t>(t)];
+    if (tree < 0) continue;
+    const MeshExits exits = (*m.guide_mesh)[static_cast<size_t>(tree)].exits_toward(x_j);
+    std::array<Vec3, kMaxMeshExits> points;
+    for (int e = 0; e < exits.count; ++e)
+      points[static_cast<size_t>(e)] = exits.exit[static_cast<size_t>(e)].y;
+    add_exit_guide_axes(guide, targets.target[static_cast<size_t>(t)].share, x_j, points.data(),
+                        exits.count);
+  }
+  return guide;
+}
+
+// Where the ray from x_j along w leaves the boundary: the sphere in closed form (what lies
+// between is for a visibility segment to find), the mesh by a ray (false when it meets
+// something else first, which the walk would have met too).
+struct BoundaryExit {
+  Vec3 p, n;
+  float t = 0;
+  bool needs_visibility = false;
+};
+bool boundary_exit(const KernelContext& ctx, const MediumInfo& m, Vec3 x_j, Vec3 w,
+                   BoundaryExit* out) {
+  if (!m.guide_mesh) {
+    out->t = sphere_exit_distance(m.guide_centre, m.guide_radius, x_j, w);
+    out->p = x_j + w * out->t;
+    out->n = normalize(out->p - m.guide_centre);
+    out->needs_visibility = true;
+    return out->t > 0;
+  }
+  float t = 0;
+  uint32_t geom = 0, prim = 0;
+  if (!ctx.embree->intersect1(x_j, w, 0.0f, kInfinity, &t, &geom, &prim) ||
+      geom != static_cast<uint32_t>(m.guide_boundary)) {
+    return false;
+  }
+  const SurfacePoint hit = ctx.embree->surface_point(geom, prim, x_j + w * t);
+  out->p = hit.p;
+  out->n = hit.n;
+  out->t = length(hit.p - x_j);
+  return dot(w, hit.n) > 0 && out->t > 0;
 }
 
 float square(float x) {
@@ -46,7 +91,7 @@ float guided_exit_ratio(const KernelContext& ctx, const MediumInfo& m, Vec3 x_j,
 }
 
 float walk_guide_ratio(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
-                       const SurfaceInfo& info, uint32_t geom) {
+                       Vec3 n, const SurfaceInfo& info, uint32_t geom) {
   if (ctx.integrator != Integrator::kSnee || state.medium[slot] < 0 ||
       info.interior_medium != state.medium[slot]) {
     return 0.0f;
@@ -56,7 +101,7 @@ float walk_guide_ratio(const KernelContext& ctx, const PathState& state, uint32_
   const MediumInfo& m = ctx.media[static_cast<size_t>(state.medium[slot])];
   if (m.guide_boundary != static_cast<int32_t>(geom)) return 0.0f;
   const Vec3 w = state.direction(slot);
-  if (!(dot(w, p - m.guide_centre) > 0)) return 0.0f;  // not leaving
+  if (!(dot(w, n) > 0)) return 0.0f;  // not leaving
   const Vec3 x_j = state.vertex_j(slot);
   return guided_exit_ratio(ctx, m, x_j, state.direction_in_j(slot), w, length(p - x_j));
 }
@@ -108,11 +153,13 @@ void connect_guided_exit(const KernelContext& ctx, const PathState& state, uint3
     counters.count(SneeCounter::kGuidedExitNoAxis);
     return;
   }
-  const float t = sphere_exit_distance(m.guide_centre, m.guide_radius, x_j, w);
+  BoundaryExit exit;
+  if (!boundary_exit(ctx, m, x_j, w, &exit)) return;
+  const float t = exit.t;
   const StepDensities d = step_densities(ctx, m, guide, omega_in, w, t);
-  if (!(d.guided > 0) || !(t > 0)) return;
-  const Vec3 x_k = x_j + w * t;
-  const Vec3 n = normalize(x_k - m.guide_centre);
+  if (!(d.guided > 0)) return;
+  const Vec3 x_k = exit.p;
+  const Vec3 n = exit.n;
   const Vec3 outer = x_k + ctx.epsilon * n;
   const SurfaceInfo& info = ctx.surfaces[static_cast<size_t>(m.guide_boundary)];
   const DielectricParams& interface = info.dielectric;
@@ -125,10 +172,14 @@ void connect_guided_exit(const KernelContext& ctx, const PathState& state, uint3
   const int32_t outside = ctx.has_null_surfaces ? -1 : kVisibilityOnly;
   const auto connect = [&](Vec3 wi, float t_max, Rgb contribution) {
     if (is_black(contribution) || !is_finite(contribution)) return;
-    const uint32_t first =
-        shadow.add_segment(x_j, w, std::max(0.0f, t - ctx.epsilon), kVisibilityOnly);
-    shadow.add_segment(outer, wi, t_max, outside);
-    shadow.add_connection({ConnectionKind::kLight, slot, first, 2, -1, contribution, Rgb(0.0f)});
+    // The segments of a connection are consecutive: x_j -> x_k (on the sphere), then the light.
+    const uint32_t inner =
+        exit.needs_visibility
+            ? shadow.add_segment(x_j, w, std::max(0.0f, t - ctx.epsilon), kVisibilityOnly)
+            : 0;
+    const uint32_t to_light = shadow.add_segment(outer, wi, t_max, outside);
+    shadow.add_connection({ConnectionKind::kLight, slot, exit.needs_visibility ? inner : to_light,
+                           exit.needs_visibility ? 2u : 1u, -1, contribution, Rgb(0.0f)});
     counters.count(SneeCounter::kGuidedExitConnections);
   };
 

@@ -21,11 +21,12 @@ namespace snee {
 float guided_exit_ratio(const KernelContext& ctx, const MediumInfo& m, Vec3 x_j, Vec3 omega_in,
                         Vec3 w, float t);
 
-// guided_exit_ratio for the walk at a surface hit p of shape geom, before the hit is pushed into
+// guided_exit_ratio for the walk at a surface hit p (outward geometric normal n) of shape geom,
+// before the hit is pushed into
 // the path's vertex memory: nonzero where the walk leaves its medium through the guide's sphere
 // right after a medium vertex x_j whose parent is a surface vertex.
 float walk_guide_ratio(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
-                       const SurfaceInfo& info, uint32_t geom);
+                       Vec3 n, const SurfaceInfo& info, uint32_t geom);
 
 // The walk's exit weights given ratio = b / a: its light sample (to a distant light or not,
 // light density p_light, the BSDF's p_bsdf; a delta light or a delta BSDF as flagged), and its

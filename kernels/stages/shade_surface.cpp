@@ -322,7 +322,7 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
 
     // The exit-event bookkeeping of SNEE needs the vertices before this one.
     const ExitEvent exit = make_exit_event(ctx, state, s, p, n, ns, info, geom);
-    const float guide_ratio = walk_guide_ratio(ctx, state, s, p, info, geom);
+    const float guide_ratio = walk_guide_ratio(ctx, state, s, p, n, info, geom);
     if (exit.snee_possible) counters.count(SneeCounter::kFourWayExitEvents);
     state.depth[s] += 1;
     state.push_vertex(s, p, d, false);

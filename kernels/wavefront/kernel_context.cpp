@@ -114,6 +114,41 @@ bool nothing_reaches_into(const Scene& s, size_t sphere) {
 // A mesh boundary's exit trees for the manifold strategy, one per directional light and one per
 // point or spot light outside it, and with `chains` a chain tree per directional light; their
 // size grows with the mesh, so it is checked against the budget before any is built.
+// The guided exit's exit trees of a closed flat-shaded mesh (docs/method.md 3.15), one per
+// distant target; behind a smooth interface only the cones', as nothing but a light sample
+// reaches a directional light and a smooth interface has none. False, building nothing, where no
+// target needs a tree: the guided exit then does not run in the mesh.
+bool build_guide_trees(const Shape& mesh, const DielectricParams& interface,
+                       const ProbeTargets& targets, const MemoryBudget& budget, MediumInfo& m) {
+  const auto wanted = [&](const ProbeTarget& target) {
+    return !target.positional && !(target.delta && interface.delta());
+  };
+  int distant = 0;
+  for (int t = 0; t < targets.count; ++t)
+    distant += wanted(targets.target[static_cast<size_t>(t)]) ? 1 : 0;
+  if (distant == 0) return false;
+  const uint64_t triangles = mesh.mesh.triangle_count();
+  const uint64_t bytes =
+      saturating_multiply(static_cast<uint64_t>(distant), FacetExitTree::bytes_at_most(triangles));
+  if (!budget.allows(bytes)) {
+    throw std::invalid_argument(
+        budget.exceeded("the guided exit's exit trees of the mesh '" + mesh.name + "' (" +
+                            std::to_string(triangles) + " triangles, a tree for each of " +
+                            std::to_string(distant) + " small distant lights)",
+                        bytes));
+  }
+  auto trees = std::make_shared<std::vector<FacetExitTree>>();
+  trees->reserve(static_cast<size_t>(distant));
+  for (int t = 0; t < targets.count; ++t) {
+    const ProbeTarget& target = targets.target[static_cast<size_t>(t)];
+    if (!wanted(target)) continue;
+    m.guide_tree_of_target[static_cast<size_t>(t)] = static_cast<int>(trees->size());
+    trees->emplace_back(mesh.mesh, interface.eta, target.where);
+  }
+  m.guide_mesh = std::move(trees);
+  return true;
+}
+
 void build_facet_exit_trees(const Scene& s, const Shape& mesh, float eta, bool chains,
                             int chain_levels, const MemoryBudget& budget, MediumInfo& m) {
   std::vector<int> directional, point;
@@ -225,11 +260,15 @@ KernelContext::KernelContext(const Scene& s, const EmbreeScene& e, const LightTa
     }
     MediumInfo& inside = media[static_cast<size_t>(shape.interior_medium)];
     if (integ == Integrator::kSnee && snee_.guide_rate > 0 && inside.snee_eligible() &&
-        boundaries[static_cast<size_t>(shape.interior_medium)] == 1 &&
-        shape.kind == ShapeKind::kSphere && info.roughness_texture < 0) {
-      inside.guide_boundary = static_cast<int32_t>(i);
-      inside.guide_centre = shape.center;
-      inside.guide_radius = shape.radius;
+        boundaries[static_cast<size_t>(shape.interior_medium)] == 1 && info.roughness_texture < 0) {
+      if (shape.kind == ShapeKind::kSphere) {
+        inside.guide_boundary = static_cast<int32_t>(i);
+        inside.guide_centre = shape.center;
+        inside.guide_radius = shape.radius;
+      } else if (shape.kind == ShapeKind::kMesh && shape.closed && !shape.smooth_shading) {
+        if (build_guide_trees(shape, info.dielectric, snee.probe_targets, budget, inside))
+          inside.guide_boundary = static_cast<int32_t>(i);
+      }
     }
     if (!info.dielectric.delta()) continue;
     MediumInfo& m = media[static_cast<size_t>(shape.interior_medium)];

@@ -117,12 +117,18 @@ struct MediumInfo {
   // Whether no other shape reaches into a sphere boundary (no bounding box meets it), so a path
   // inside it cannot be blocked: its reflection chains then need only their light segment.
   bool manifold_interior_clear = false;
-  // The sphere that is this medium's only boundary, a dielectric of any roughness (without a
+  // The sphere or closed flat-shaded mesh that is this medium's only boundary, a dielectric of
+  // any roughness (without a
   // roughness texture) and eta != 1, where the guided exit runs (docs/method.md 3.15); -1 if
   // none, or for integrators other than snee.
   int32_t guide_boundary = -1;
+  // A sphere's centre and radius; or, for a closed flat-shaded mesh, its exit trees, one per
+  // distant target (SneeOptions::probe_targets) as guide_tree_of_target says (-1: none, a
+  // point or spot light, whose share of the guide then stays unused).
   Vec3 guide_centre{0.0f, 0.0f, 0.0f};
   float guide_radius = 0.0f;
+  std::shared_ptr<const std::vector<FacetExitTree>> guide_mesh = nullptr;
+  std::array<int, kMaxProbeTargets> guide_tree_of_target{-1, -1, -1, -1};
   // How often a vertex searches for reflection chains (chain_search_probability).
   double chain_search = 0.0;
 

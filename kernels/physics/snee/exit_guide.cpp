@@ -5,6 +5,18 @@
 
 namespace snee {
 
+void add_exit_guide_axes(ExitGuide& guide, float share, Vec3 x, const Vec3* exit_points,
+                         int count) {
+  for (int e = 0; e < count; ++e) {
+    const Vec3 toward = exit_points[e] - x;
+    const float distance = length(toward);
+    if (!(distance > 0) || guide.count == kMaxExitGuideAxes) continue;
+    const size_t k = static_cast<size_t>(guide.count++);
+    guide.axis[k] = toward / distance;
+    guide.probability[k] = share / static_cast<float>(count);
+  }
+}
+
 ExitGuide exit_guide(const ProbeTargets& targets, Vec3 centre, float radius, float eta, Vec3 x) {
   ExitGuide guide;
   for (int t = 0; t < targets.count; ++t) {
@@ -12,14 +24,10 @@ ExitGuide exit_guide(const ProbeTargets& targets, Vec3 centre, float radius, flo
     const SphereExits exits = target.positional
                                   ? sphere_exits_toward_point(centre, radius, eta, target.where, x)
                                   : sphere_exits_toward_light(centre, radius, eta, target.where, x);
-    for (int e = 0; e < exits.count; ++e) {
-      const Vec3 toward = exits.exit[static_cast<size_t>(e)].y - x;
-      const float distance = length(toward);
-      if (!(distance > 0)) continue;
-      const size_t k = static_cast<size_t>(guide.count++);
-      guide.axis[k] = toward / distance;
-      guide.probability[k] = target.share / static_cast<float>(exits.count);
-    }
+    std::array<Vec3, kMaxSphereExits> points;
+    for (int e = 0; e < exits.count; ++e)
+      points[static_cast<size_t>(e)] = exits.exit[static_cast<size_t>(e)].y;
+    add_exit_guide_axes(guide, target.share, x, points.data(), exits.count);
   }
   return guide;
 }

@@ -3,21 +3,24 @@
 // SNEE's probe-based strategies can make the path that leaves the medium next, and under a small
 // light behind a glossy boundary the walk's phase-sampled direction rarely leaves along the few
 // degrees that refract toward it. The guide aims there: for each small light (the probe's
-// targets) it finds every point of the sphere boundary whose refraction of the light's central
-// ray passes through the vertex (manifold_sphere.h), and the strategy draws the direction to
-// the exit point uniformly in a cap around one of them. The cap's density is evaluable for any
+// targets) it finds every point of the boundary whose refraction of the light's central ray
+// passes through the vertex (manifold_sphere.h on a sphere, manifold_mesh.h's facet beams on a
+// closed flat-shaded mesh), and the strategy draws the direction to the exit point uniformly in
+// a cap around one of them. The cap's density is evaluable for any
 // direction, so the walk's own exit events can weigh themselves against it.
 #pragma once
 
 #include <array>
 
 #include "kernels/physics/sampling.h"
+#include "kernels/physics/snee/manifold_mesh.h"
 #include "kernels/physics/snee/manifold_sphere.h"
 #include "kernels/physics/snee/probe_targets.h"
 
 namespace snee {
 
-inline constexpr int kMaxExitGuideAxes = kMaxProbeTargets * kMaxSphereExits;
+inline constexpr int kMaxExitGuideAxes = kMaxProbeTargets * kMaxMeshExits;
+static_assert(kMaxMeshExits >= kMaxSphereExits);
 
 // The cap axes at one vertex, each with the probability of being chosen.
 struct ExitGuide {
@@ -25,6 +28,10 @@ struct ExitGuide {
   std::array<float, kMaxExitGuideAxes> probability{};
   int count = 0;
 };
+
+// Adds a target's axes: the directions from x toward its exit points (count of them), each
+// chosen with the target's share over their count.
+void add_exit_guide_axes(ExitGuide& guide, float share, Vec3 x, const Vec3* exit_points, int count);
 
 // The axes at x inside the sphere (centre, radius, relative index eta = inside / outside): a
 // target is chosen with its share (probe_targets.h), then one of its solutions uniformly; a

@@ -35,11 +35,13 @@ ProbeTargets probe_targets_of(const Scene& scene, const LightTable& lights, floa
       case LightKind::kDirectional:
       case LightKind::kCone:
         target.where = light.direction;
+        target.delta = light.kind == LightKind::kDirectional;
         break;
       case LightKind::kPoint:
       case LightKind::kSpot:
         target.where = light.position;
         target.positional = true;
+        target.delta = true;
         break;
       case LightKind::kArea: {
         ShapeBounds box;

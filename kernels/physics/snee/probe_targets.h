@@ -21,6 +21,9 @@ struct ProbeTarget {
   Vec3 where;
   bool positional = false;
   float share = 0;  // of the lobes' part, the shares summing to 1
+  // Directional, point or spot: reached only by light samples (the guided exit behind a smooth
+  // mesh has no use for it, docs/method.md 3.15).
+  bool delta = false;
 };
 
 struct ProbeTargets {

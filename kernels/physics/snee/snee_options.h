@@ -111,8 +111,9 @@ struct SneeOptions {
   // rate, so the weights still sum to one. The default is measured (docs/method.md 3.10).
   float manifold_rate = kDefaultManifoldRate;
   // The probability that the guided exit runs at a medium vertex whose parent is a surface
-  // vertex, inside a sphere boundary (docs/method.md 3.15); 0 turns it off. Its density carries
-  // the rate, so the walk's exit events weigh themselves against it at any rate.
+  // vertex, inside a sphere or closed flat-shaded mesh boundary (docs/method.md 3.15); 0 turns it
+  // off. Its density carries the rate, so the walk's exit events weigh themselves against it at any
+  // rate.
   float guide_rate = kDefaultGuideRate;
   // Half-angle in degrees of the cap the guided exit draws its direction in.
   float guide_cap_degrees = kDefaultGuideCapDegrees;
