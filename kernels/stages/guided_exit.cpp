@@ -15,15 +15,16 @@ namespace {
 // function both sides evaluate alike, and the walk's channel weights at x_j are gone by the
 // time its exit is weighed.
 struct StepDensities {
+  float phase = 0;  // f_p at x_j, part of a
   float walk = 0;
   float guided = 0;
 };
 
 StepDensities step_densities(const KernelContext& ctx, const MediumInfo& m, const ExitGuide& guide,
-                             Vec3 omega_in, Vec3 w, float t) {
-  const float cap = exit_guide_cap_cosine(ctx.snee.guide_cap_degrees);
-  return {hg_phase(dot(omega_in, w), m.medium.g) * free_flight_survival(m.medium.sigma_t, t),
-          ctx.snee.guide_rate * exit_guide_pdf(guide, cap, w)};
+                             float cap_cosine, Vec3 omega_in, Vec3 w, float t) {
+  const float phase = hg_phase(dot(omega_in, w), m.medium.g);
+  return {phase, phase * free_flight_survival(m.medium.sigma_t, t),
+          ctx.snee.guide_rate * exit_guide_pdf(guide, cap_cosine, w)};
 }
 
 ExitGuide guide_at(const KernelContext& ctx, const MediumInfo& m, Vec3 x_j) {
@@ -36,12 +37,8 @@ ExitGuide guide_at(const KernelContext& ctx, const MediumInfo& m, Vec3 x_j) {
   for (int t = 0; t < targets.count; ++t) {
     const int tree = m.guide_tree_of_target[static_cast<size_t>(t)];
     if (tree < 0) continue;
-    const MeshExits exits = (*m.guide_mesh)[static_cast<size_t>(tree)].exits_toward(x_j);
-    std::array<Vec3, kMaxMeshExits> points;
-    for (int e = 0; e < exits.count; ++e)
-      points[static_cast<size_t>(e)] = exits.exit[static_cast<size_t>(e)].y;
-    add_exit_guide_axes(guide, targets.target[static_cast<size_t>(t)].share, x_j, points.data(),
-                        exits.count);
+    add_exit_guide_axes(guide, targets.target[static_cast<size_t>(t)].share, x_j,
+                        (*m.guide_mesh)[static_cast<size_t>(tree)].exits_toward(x_j));
   }
   return guide;
 }
@@ -82,14 +79,6 @@ float square(float x) {
 
 }  // namespace
 
-float guided_exit_ratio(const KernelContext& ctx, const MediumInfo& m, Vec3 x_j, Vec3 omega_in,
-                        Vec3 w, float t) {
-  if (m.guide_boundary < 0) return 0.0f;
-  const StepDensities d = step_densities(ctx, m, guide_at(ctx, m, x_j), omega_in, w, t);
-  if (!(d.guided > 0)) return 0.0f;
-  return d.walk > 0 ? d.guided / d.walk : kInfinity;
-}
-
 float walk_guide_ratio(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
                        Vec3 n, const SurfaceInfo& info, uint32_t geom) {
   if (ctx.integrator != Integrator::kSnee || state.medium[slot] < 0 ||
@@ -103,7 +92,11 @@ float walk_guide_ratio(const KernelContext& ctx, const PathState& state, uint32_
   const Vec3 w = state.direction(slot);
   if (!(dot(w, n) > 0)) return 0.0f;  // not leaving
   const Vec3 x_j = state.vertex_j(slot);
-  return guided_exit_ratio(ctx, m, x_j, state.direction_in_j(slot), w, length(p - x_j));
+  const StepDensities d = step_densities(ctx, m, guide_at(ctx, m, x_j),
+                                         exit_guide_cap_cosine(ctx.snee.guide_cap_degrees),
+                                         state.direction_in_j(slot), w, length(p - x_j));
+  if (!(d.guided > 0)) return 0.0f;
+  return d.walk > 0 ? d.guided / d.walk : kInfinity;
 }
 
 float walk_light_sample_weight(float ratio, float p_light, float p_bsdf, bool delta_light,
@@ -156,7 +149,7 @@ void connect_guided_exit(const KernelContext& ctx, const PathState& state, uint3
   BoundaryExit exit;
   if (!boundary_exit(ctx, m, x_j, w, &exit)) return;
   const float t = exit.t;
-  const StepDensities d = step_densities(ctx, m, guide, omega_in, w, t);
+  const StepDensities d = step_densities(ctx, m, guide, cap, omega_in, w, t);
   if (!(d.guided > 0)) return;
   const Vec3 x_k = exit.p;
   const Vec3 n = exit.n;
@@ -166,8 +159,8 @@ void connect_guided_exit(const KernelContext& ctx, const PathState& state, uint3
   const Frame frame = Frame::from_normal(n);
   const Vec3 wo_local = frame.to_local(-w);
   // The walk's flight weight T / P_pass and its phase weight 1 become f_p T / b.
-  const Rgb beta = state.throughput(slot) * m.medium.transmittance(x_j, w, t) *
-                   (hg_phase(dot(omega_in, w), m.medium.g) / d.guided);
+  const Rgb beta =
+      state.throughput(slot) * m.medium.transmittance(x_j, w, t) * (d.phase / d.guided);
   // Outside the sphere: vacuum, with null surfaces tracked as the walk crosses them.
   const int32_t outside = ctx.has_null_surfaces ? -1 : kVisibilityOnly;
   const auto connect = [&](Vec3 wi, float t_max, Rgb contribution) {

@@ -16,19 +16,20 @@
 
 namespace snee {
 
-// b / a for the walk's step from x_j (reached along omega_in) in direction w, leaving the
-// medium's boundary after t; 0 where the guided exit does not run at x_j.
-float guided_exit_ratio(const KernelContext& ctx, const MediumInfo& m, Vec3 x_j, Vec3 omega_in,
-                        Vec3 w, float t);
-
-// guided_exit_ratio for the walk at a surface hit p (outward geometric normal n) of shape geom,
-// before the hit is pushed into
-// the path's vertex memory: nonzero where the walk leaves its medium through the guide's sphere
-// right after a medium vertex x_j whose parent is a surface vertex.
+// b / a for the walk at a surface hit p (outward geometric normal n) of shape geom, before the
+// hit is pushed into the path's vertex memory: nonzero where the walk leaves its medium through
+// the guide's boundary right after a medium vertex x_j whose parent is a surface vertex, and the
+// guided exit could have drawn its direction there.
 float walk_guide_ratio(const KernelContext& ctx, const PathState& state, uint32_t slot, Vec3 p,
                        Vec3 n, const SurfaceInfo& info, uint32_t geom);
 
-// The walk's exit weights given ratio = b / a: its light sample (to a distant light or not,
+// The ratio the walk's last exit kept for the light its refracted ray reaches next, 0 if none.
+inline float guide_ratio_after_exit(const PathState& state, uint32_t slot) {
+  return (state.flags[slot] & kPathAfterGuidedExit) != 0 ? state.guide_ratio[slot] : 0.0f;
+}
+
+// The walk's exit weights given ratio = b / a (0 without the guided exit: then they are the path
+// tracer's power heuristic): its light sample (to a distant light or not,
 // light density p_light, the BSDF's p_bsdf; a delta light or a delta BSDF as flagged), and its
 // BSDF-sampled direction reaching a light that the guided exit also reaches (a distant light)
 // or does not (an emitter).

@@ -19,12 +19,8 @@ void shade_escaped(const KernelContext& ctx, PathState& state, StageQueues& q) {
       const Rgb le = ctx.lights->escaped_radiance(d);
       if (!is_black(le)) {
         const float pdf = state.mis_pdf[s];
-        const float weight =
-            (flags & kPathAfterGuidedExit) != 0
-                ? walk_bsdf_sample_weight(state.guide_ratio[s], pdf, ctx.lights->escaped_pdf(d),
-                                          !(pdf > 0), true)
-            : pdf > 0 ? power_heuristic(pdf, ctx.lights->escaped_pdf(d))
-                      : 1.0f;
+        const float weight = walk_bsdf_sample_weight(guide_ratio_after_exit(state, s), pdf,
+                                                     ctx.lights->escaped_pdf(d), !(pdf > 0), true);
         state.add_radiance(s, state.throughput(s) * le * weight);
       }
     }

@@ -224,12 +224,9 @@ void surface_nee(const KernelContext& ctx, PathState& state, uint32_t s, Vec3 p,
                               unweighted, seg, shadow);
     return;
   }
-  // A light sample through the boundary that the guided exit also takes (guided_exit.h).
-  const float weight = guide_ratio > 0 && wi_local.z > 0
-                           ? walk_light_sample_weight(guide_ratio, ls.pdf, bsdf_pdf, ls.delta,
-                                                      std::isinf(ls.distance))
-                       : ls.delta ? 1.0f
-                                  : power_heuristic(ls.pdf, bsdf_pdf);
+  // Only a light sample through the boundary competes with the guided exit (guided_exit.h).
+  const float weight = walk_light_sample_weight(wi_local.z > 0 ? guide_ratio : 0.0f, ls.pdf,
+                                                bsdf_pdf, ls.delta, std::isinf(ls.distance));
   shadow.add_connection({ConnectionKind::kLight, s, seg, 1, -1, unweighted * weight, Rgb(0.0f)});
 }
 
@@ -291,11 +288,8 @@ void shade_surface(const KernelContext& ctx, PathState& state, StageQueues& q,
         connect_exit_emission(ctx, state, s, d, le, light_pdf(), false, q.shadow);
       } else {
         const float pdf = state.mis_pdf[s];
-        const float weight =
-            (state.flags[s] & kPathAfterGuidedExit) != 0
-                ? walk_bsdf_sample_weight(state.guide_ratio[s], pdf, light_pdf(), !(pdf > 0), false)
-            : pdf > 0 ? power_heuristic(pdf, light_pdf())
-                      : 1.0f;
+        const float weight = walk_bsdf_sample_weight(guide_ratio_after_exit(state, s), pdf,
+                                                     light_pdf(), !(pdf > 0), false);
         state.add_radiance(s, state.throughput(s) * le * weight);
       }
     }

@@ -5,29 +5,14 @@
 
 namespace snee {
 
-void add_exit_guide_axes(ExitGuide& guide, float share, Vec3 x, const Vec3* exit_points,
-                         int count) {
-  for (int e = 0; e < count; ++e) {
-    const Vec3 toward = exit_points[e] - x;
-    const float distance = length(toward);
-    if (!(distance > 0) || guide.count == kMaxExitGuideAxes) continue;
-    const size_t k = static_cast<size_t>(guide.count++);
-    guide.axis[k] = toward / distance;
-    guide.probability[k] = share / static_cast<float>(count);
-  }
-}
-
 ExitGuide exit_guide(const ProbeTargets& targets, Vec3 centre, float radius, float eta, Vec3 x) {
   ExitGuide guide;
   for (int t = 0; t < targets.count; ++t) {
     const ProbeTarget& target = targets.target[static_cast<size_t>(t)];
-    const SphereExits exits = target.positional
-                                  ? sphere_exits_toward_point(centre, radius, eta, target.where, x)
-                                  : sphere_exits_toward_light(centre, radius, eta, target.where, x);
-    std::array<Vec3, kMaxSphereExits> points;
-    for (int e = 0; e < exits.count; ++e)
-      points[static_cast<size_t>(e)] = exits.exit[static_cast<size_t>(e)].y;
-    add_exit_guide_axes(guide, target.share, x, points.data(), exits.count);
+    add_exit_guide_axes(guide, target.share, x,
+                        target.positional
+                            ? sphere_exits_toward_point(centre, radius, eta, target.where, x)
+                            : sphere_exits_toward_light(centre, radius, eta, target.where, x));
   }
   return guide;
 }
@@ -42,19 +27,15 @@ float exit_guide_pdf(const ExitGuide& guide, float cap_cosine, Vec3 w) {
     if (dot(w, guide.axis[static_cast<size_t>(k)]) >= cap_cosine)
       inside += guide.probability[static_cast<size_t>(k)];
   }
-  return inside / (2.0f * kPi * (1.0f - cap_cosine));
+  return inside * uniform_cone_pdf(cap_cosine);
 }
 
 bool exit_guide_sample(const ExitGuide& guide, float cap_cosine, float u_axis, Vec2 u, Vec3* w) {
   for (int k = 0; k < guide.count; ++k) {
     const float p = guide.probability[static_cast<size_t>(k)];
     if (u_axis < p) {
-      const float cos_theta = 1.0f - u.x * (1.0f - cap_cosine);
-      const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
-      const float phi = 2.0f * kPi * u.y;
       const Frame frame = Frame::from_normal(guide.axis[static_cast<size_t>(k)]);
-      *w = normalize(
-          frame.to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta}));
+      *w = normalize(frame.to_world(sample_uniform_cone(u, cap_cosine)));
       return true;
     }
     u_axis -= p;

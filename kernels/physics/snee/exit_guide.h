@@ -29,9 +29,19 @@ struct ExitGuide {
   int count = 0;
 };
 
-// Adds a target's axes: the directions from x toward its exit points (count of them), each
-// chosen with the target's share over their count.
-void add_exit_guide_axes(ExitGuide& guide, float share, Vec3 x, const Vec3* exit_points, int count);
+// Adds a target's axes: the directions from x toward its exit points (the y of each of the
+// `exits`, SphereExits or MeshExits), each chosen with the target's share over their count.
+template <class Exits>
+void add_exit_guide_axes(ExitGuide& guide, float share, Vec3 x, const Exits& exits) {
+  for (int e = 0; e < exits.count; ++e) {
+    const Vec3 toward = exits.exit[static_cast<size_t>(e)].y - x;
+    const float distance = length(toward);
+    if (!(distance > 0) || guide.count == kMaxExitGuideAxes) continue;
+    const size_t k = static_cast<size_t>(guide.count++);
+    guide.axis[k] = toward / distance;
+    guide.probability[k] = share / static_cast<float>(exits.count);
+  }
+}
 
 // The axes at x inside the sphere (centre, radius, relative index eta = inside / outside): a
 // target is chosen with its share (probe_targets.h), then one of its solutions uniformly; a
